@@ -1,0 +1,105 @@
+// The validated description of one run: everything a case file (TOML) says.
+// Units are fixed once here, at the case boundary: mm, s, kg/m^3 for density,
+// mol/m^3 for C. See cases/README.md for every key.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace adrsph {
+
+enum class Scheme { modern, conventional };
+enum class Flow { wcsph, prescribed };
+
+struct Case {
+  std::string name;                 // `name`
+  std::filesystem::path source;     // the case file it came from (empty when built in code)
+  Scheme scheme = Scheme::modern;   // `scheme` = "modern" | "conventional"
+  Flow flow = Flow::wcsph;          // `flow` = "wcsph" | "prescribed"
+
+  struct Geometry {
+    double length = 100.0;     // `geometry.length` [mm], channel x in [0, length]
+    double half_width = 5.0;   // `geometry.half_width` [mm], y in [-R, R]
+  } geometry;
+
+  struct Particles {
+    double dx = 0.25;          // `particles.dx` [mm], lattice spacing; h = dx
+    int wall_layers = 3;       // `particles.wall_layers`, dummy layers (>= 3 for support 3h)
+    int inlet_layers = 5;      // `particles.inlet_layers`, inflow buffer depth in dx
+    int outlet_layers = 4;     // `particles.outlet_layers`, outflow buffer depth in dx
+    double skin = 0.1;         // `particles.skin`, neighbour-list skin as a fraction of 3h
+  } particles;
+
+  struct Fluid {
+    double rho0 = 1.2;                 // `fluid.rho0` [kg/m^3]
+    double nu = 15.0;                  // `fluid.nu` [mm^2/s]
+    double u_bulk = 100.0;             // `fluid.u_bulk` [mm/s]; u_max = 2 u_bulk (spec 1)
+    double c0_factor = 10.0;           // `fluid.c0_factor`, c0 = c0_factor * u_max
+    double gamma = 7.0;                // `fluid.gamma`, Tait exponent
+    double background_pressure = 0.025;  // `fluid.background_pressure`, p_b / (rho0 c0^2)
+  } fluid;
+
+  struct Species {
+    double D = 10.0;       // `species.D` [mm^2/s]
+    double k = 1.462;      // `species.k` [1/s], first-order reaction rate
+    double c_in = 2.0;     // `species.c_in` [mol/m^3], inlet concentration
+    double c_init = 2.0;   // `species.c_init` [mol/m^3], initial concentration
+    bool ale = false;      // `species.ale`, add du . grad C (consistent ALE form, modern only)
+  } species;
+
+  struct Modern {
+    double delta = 0.1;      // `modern.delta`, density diffusion coefficient (eq. 8)
+    double shift_eps = 0.5;  // `modern.shift_eps`, shifting coefficient (eq. 10)
+    double shift_max = 0.2;  // `modern.shift_max`, cap of the shift per step, fraction of dx
+  } modern;
+
+  struct Time {
+    double t_end = 10.0;             // `time.t_end` [s]
+    long max_steps = 0;              // `time.max_steps`, 0 = no limit
+    double cfl = 0.25;               // `time.cfl`, acoustic (or advective) Courant number
+    double viscous_number = 0.125;   // `time.viscous_number`, dt <= this * h^2 / nu
+    double diffusion_number = 0.125; // `time.diffusion_number`, dt <= this * h^2 / D
+    double dt = 0.0;                 // `time.dt` [s], fixed step; 0 = from the limits
+    double check_interval = 0.05;    // `time.check_interval` [s], probes + guards + steady test
+    bool stop_when_steady = true;    // `time.stop_when_steady`
+    double steady_tol = 1e-4;        // `time.steady_tol`, max probe change per check / c_in
+    double steady_window = 0.5;      // `time.steady_window` [s], must hold this long
+    double average_window = 0.0;     // `time.average_window` [s], probe time average at the end
+  } time;
+
+  struct Output {
+    std::vector<double> field_times;  // `output.field_times` [s]; the final state is always written
+    bool progress = true;             // `output.progress`, progress line on a terminal
+  } output;
+
+  double u_max() const { return 2.0 * fluid.u_bulk; }
+  double c0() const { return fluid.c0_factor * u_max(); }
+  double h() const { return particles.dx; }
+  double peclet() const { return fluid.u_bulk * geometry.length / species.D; }
+};
+
+// A bad case file or override. `what()` names the file, the key and what was expected.
+class CaseError : public std::runtime_error {
+ public:
+  CaseError(const std::string& file, const std::string& key, const std::string& expected)
+      : std::runtime_error(file + ": key '" + key + "': " + expected), file_(file), key_(key) {}
+  const std::string& file() const { return file_; }
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string file_, key_;
+};
+
+// Read and validate a case file; `overrides` are "key=value" strings (dotted keys, TOML
+// values) applied before validation. Throws CaseError.
+Case load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+
+// Check physical and geometric consistency (D >= 0, dx fits the channel, ...). Throws CaseError.
+void validate_case(const Case& c);
+
+const char* to_string(Scheme s);
+const char* to_string(Flow f);
+
+}  // namespace adrsph

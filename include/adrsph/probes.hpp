@@ -1,0 +1,33 @@
+// The probe contract shared by `run`, `reference` and `compare`:
+// probes.csv  header x_mm,C_y0,C_y+2.5,C_y-2.5,C_mean  (x = 0.5, 1.0, ..., length)
+// stations.csv header x_mm,C_mean                      (x = 25, 50, 100)
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+namespace adrsph {
+
+struct ProbeTable {
+  std::vector<double> x_mm;
+  std::vector<double> c_y0, c_yp25, c_ym25;  // C on the lines y = 0, +2.5, -2.5
+  std::vector<double> c_mean;                // section average over y in [-R, R]
+};
+
+struct StationTable {
+  std::vector<double> x_mm;
+  std::vector<double> c_mean;
+};
+
+// Probe abscissae: 0.5, 1.0, ..., length (step 0.5 mm).
+std::vector<double> probe_x_positions(double length);
+// Station abscissae of the paper's table 3: 25, 50, 100 (scaled to length/100 if not 100).
+std::vector<double> station_x_positions(double length);
+
+void write_probes_csv(const std::filesystem::path& file, const ProbeTable& t);
+void write_stations_csv(const std::filesystem::path& file, const StationTable& t);
+// Readers throw std::runtime_error naming the file and the line on bad content.
+ProbeTable read_probes_csv(const std::filesystem::path& file);
+StationTable read_stations_csv(const std::filesystem::path& file);
+
+}  // namespace adrsph

@@ -1,0 +1,76 @@
+// One SPH simulation of a case, from t = 0 to t_end (or steady state, or max_steps).
+// The CLI (`adrsph run`) drives it and owns all file output; the simulation reports
+// through a RunObserver and returns a RunResult.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adrsph/case.hpp"
+#include "adrsph/probes.hpp"
+
+namespace adrsph {
+
+// Particle kinds as stored in the field output (`kind` dataset).
+enum class Kind : std::uint8_t { fluid = 0, wall = 1, inlet = 2, outlet = 3 };
+
+// A read-only view of the particle state at one instant (plain arrays, SoA).
+struct FieldFrame {
+  double t = 0.0;
+  long step = 0;
+  std::span<const double> x, y, vx, vy, rho, p, c;  // mm, mm/s, kg/m^3, Pa, mol/m^3
+  std::span<const std::uint8_t> kind;               // values of Kind
+};
+
+struct Progress {
+  double t = 0.0, t_end = 0.0;
+  long step = 0;
+  double wall_s = 0.0;
+  double steps_per_s = 0.0;
+  double eta_s = 0.0;          // estimated wall seconds to t_end
+  double steady_change = 0.0;  // last probe change measure (see time.steady_tol)
+};
+
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  virtual void on_progress(const Progress&) {}
+  // Called at each requested output time, at the end, and with the last good state on failure.
+  virtual void on_fields(const FieldFrame&) {}
+};
+
+struct TimeStepLimits {
+  double acoustic = 0.0, advective = 0.0, viscous = 0.0, diffusion = 0.0;  // 0: not applicable
+  double chosen = 0.0;
+  std::string binding;  // which limit set dt
+};
+
+struct RunResult {
+  std::string status = "ok";  // "ok" | "failed"
+  std::string message;        // why it failed, and what to change
+  double t_reached = 0.0;
+  long steps = 0;
+  double wall_s = 0.0;
+  std::size_t n_particles = 0;   // all particles (fluid + wall + buffers) at the end
+  std::size_t n_fluid = 0;       // fluid particles at the end
+  double particle_steps_per_s = 0.0;  // sum over steps of particles / wall time
+  TimeStepLimits dt;
+  bool steady = false;
+  double t_steady = 0.0;
+  long lost_particles = 0;
+  std::vector<std::pair<std::string, double>> phase_seconds;  // timer name -> seconds
+  ProbeTable probes;
+  StationTable stations;
+  double average_window = 0.0;  // probes averaged over [t_reached - window, t_reached]; 0: instantaneous
+  std::string probe_interpolation;  // how probes were computed (text for run.json)
+};
+
+// Runs the case. Numerical failures (NaN, blow-up, lost particles) do not throw: they end
+// the run with status "failed" and a message, after on_fields() got the last good state.
+RunResult run_simulation(const Case& c, RunObserver& observer);
+
+}  // namespace adrsph

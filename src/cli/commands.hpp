@@ -1,0 +1,24 @@
+// Each subcommand registers itself on the CLI11 app from its own file.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace adrsph::cli {
+
+// Exit codes shared by all subcommands.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 2;   // bad case file, key, value, missing file
+inline constexpr int kExitRunFailed = 3;  // numerical failure (NaN, blow-up, lost particles)
+
+// Each adds its subcommand to `app` and returns it with the function to run after parsing
+// when that subcommand was chosen; the function's result is the exit code.
+struct Command {
+  CLI::App* sub = nullptr;
+  std::function<int()> action;
+};
+Command register_run(CLI::App& app);
+Command register_reference(CLI::App& app);
+Command register_compare(CLI::App& app);
+
+}  // namespace adrsph::cli
