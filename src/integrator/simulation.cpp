@@ -1,11 +1,140 @@
-// Placeholder until the SPH integrator lands.
+// The run loop: steps the solver to t_end (or steady state, or max_steps), samples the
+// probes, detects steady state, reports progress and hands field frames to the observer.
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
 #include "adrsph/simulation.hpp"
+#include "analysis/steady_state.hpp"
+#include "integrator/sph_solver.hpp"
 
 namespace adrsph {
-RunResult run_simulation(const Case&, RunObserver&) {
-  RunResult r;
-  r.status = "failed";
-  r.message = "SPH integrator not implemented yet";
-  return r;
+
+namespace {
+
+// Mean of the probe tables in the averaging window.
+ProbeTable average(const std::deque<std::pair<double, ProbeTable>>& window) {
+  ProbeTable mean = window.front().second;
+  auto accumulate = [](std::vector<double>& acc, const std::vector<double>& v) {
+    for (std::size_t i = 0; i < acc.size(); ++i) acc[i] += v[i];
+  };
+  for (std::size_t k = 1; k < window.size(); ++k) {
+    accumulate(mean.c_y0, window[k].second.c_y0);
+    accumulate(mean.c_yp25, window[k].second.c_yp25);
+    accumulate(mean.c_ym25, window[k].second.c_ym25);
+    accumulate(mean.c_mean, window[k].second.c_mean);
+  }
+  const double inv = 1.0 / static_cast<double>(window.size());
+  for (auto* v : {&mean.c_y0, &mean.c_yp25, &mean.c_ym25, &mean.c_mean})
+    for (double& x : *v) x *= inv;
+  return mean;
 }
+
+StationTable stations_from(const ProbeTable& p, double length) {
+  StationTable s;
+  s.x_mm = station_x_positions(length);
+  for (double xs : s.x_mm) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < p.x_mm.size(); ++i)
+      if (std::fabs(p.x_mm[i] - xs) < std::fabs(p.x_mm[best] - xs)) best = i;
+    s.c_mean.push_back(p.c_mean[best]);
+  }
+  return s;
+}
+
+}  // namespace
+
+RunResult run_simulation(const Case& c, RunObserver& observer) {
+  RunResult result;
+  const double wall_start = omp_get_wtime();
+  SphSolver solver(c);
+  result.dt = solver.dt_limits();
+  const double dt = result.dt.chosen;
+  const double length = c.geometry.length, half_width = c.geometry.half_width;
+  const int n_section = std::max(20, static_cast<int>(std::lround(4.0 * half_width / c.particles.dx)));
+  result.probe_interpolation = probe_interpolation_text(n_section);
+
+  SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window, std::max(c.species.c_in, 1e-300));
+  std::deque<std::pair<double, ProbeTable>> window;
+  std::vector<double> field_times = c.output.field_times;
+  std::sort(field_times.begin(), field_times.end());
+  std::size_t next_field = 0;
+  std::vector<double> pressure_pa;
+  double next_check = c.time.check_interval;
+  ProbeTable last_probes;
+  const double eps_t = 1e-9 * dt;
+
+  auto emit_fields = [&] {
+    ScopedPhase timer(solver.timers(), Phase::output);
+    observer.on_fields(solver.frame(pressure_pa));
+  };
+  auto sample = [&] {
+    ScopedPhase timer(solver.timers(), Phase::probes);
+    last_probes = solver.sampler().probe_lines(length, half_width, n_section);
+    if (c.time.average_window > 0) {
+      window.emplace_back(solver.time(), last_probes);
+      while (window.front().first < solver.time() - c.time.average_window - eps_t)
+        window.pop_front();
+    }
+  };
+
+  bool ok = true;
+  while (solver.time() < c.time.t_end - eps_t &&
+         (c.time.max_steps == 0 || solver.steps() < c.time.max_steps)) {
+    const double h = std::min(dt, c.time.t_end - solver.time());
+    if (!solver.step(h)) {
+      ok = false;
+      break;
+    }
+    const double t = solver.time();
+    if (t >= next_check - eps_t) {
+      next_check += c.time.check_interval;
+      sample();
+      Progress pr;
+      pr.t = t;
+      pr.t_end = c.time.t_end;
+      pr.step = solver.steps();
+      pr.wall_s = omp_get_wtime() - wall_start;
+      pr.steps_per_s = pr.step / std::max(pr.wall_s, 1e-9);
+      pr.eta_s = (c.time.t_end - t) / dt / std::max(pr.steps_per_s, 1e-9);
+      pr.steady_change = steady.update(t, last_probes);
+      observer.on_progress(pr);
+      if (steady.steady() && c.time.stop_when_steady) break;
+    }
+    while (next_field < field_times.size() && t >= field_times[next_field] - eps_t) {
+      ++next_field;
+      emit_fields();
+    }
+  }
+
+  if (!ok) {
+    result.status = "failed";
+    result.message = solver.failure();
+  }
+  // Final probes: instantaneous, or the mean over the final window.
+  if (c.time.average_window > 0 && !window.empty() && ok) {
+    result.probes = average(window);
+    result.average_window = window.back().first - window.front().first;
+  } else {
+    sample();
+    result.probes = last_probes;
+  }
+  result.stations = stations_from(result.probes, length);
+  emit_fields();
+
+  result.t_reached = solver.time();
+  result.steps = solver.steps();
+  result.wall_s = omp_get_wtime() - wall_start;
+  result.n_particles = solver.particles().size();
+  result.n_fluid = solver.fluid_count();
+  result.particle_steps_per_s = solver.particle_steps() / std::max(result.wall_s, 1e-9);
+  result.steady = steady.steady();
+  result.t_steady = steady.t_steady();
+  result.lost_particles = solver.lost_particles();
+  result.phase_seconds = solver.timers().table();
+  return result;
+}
+
 }  // namespace adrsph

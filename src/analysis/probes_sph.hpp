@@ -1,0 +1,28 @@
+// SPH values at probe points: Shepard-normalised kernel interpolation over the particles
+// that carry species (fluid and buffers, not walls):
+//   C(x_p) = sum_j V_j C_j W(x_p - x_j) / sum_j V_j W(x_p - x_j)
+// Section averages: the mean of such values at n points evenly spread over y in [-R, R]
+// (midpoint rule).
+#pragma once
+
+#include "adrsph/probes.hpp"
+#include "kernels/quintic_kernel.hpp"
+#include "neighbours/cell_grid.hpp"
+#include "particles/particle_store.hpp"
+
+namespace adrsph {
+
+struct ProbeSampler {
+  const ParticleStore& particles;
+  const CellGrid& grid;  // sorted for `particles` (particles may have moved < skin/2 since)
+  const QuinticKernel& kernel;
+
+  double concentration_at(double x, double y) const;
+  double section_average(double x, double half_width, int n_points) const;
+  ProbeTable probe_lines(double length, double half_width, int n_section) const;
+  StationTable stations(double length, double half_width, int n_section) const;
+};
+
+std::string probe_interpolation_text(int n_section);
+
+}  // namespace adrsph

@@ -1,0 +1,55 @@
+#include "boundaries/boundary_extrapolation.hpp"
+
+namespace adrsph {
+
+void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
+  const std::size_t n = s.size();
+  const double* x = s.x.data();
+  const double* y = s.y.data();
+  const double* p = s.p.data();
+  const double* vx = s.vx.data();
+  const double* vy = s.vy.data();
+  const std::uint8_t* kind = s.kind.data();
+  const std::uint32_t* nb = ctx.neighbours.data();
+  const TaitEos& eos = ctx.phys.eos;
+  constexpr auto fluid = static_cast<std::uint8_t>(Kind::fluid);
+  constexpr auto wall = static_cast<std::uint8_t>(Kind::wall);
+  constexpr auto inlet = static_cast<std::uint8_t>(Kind::inlet);
+  constexpr auto outlet = static_cast<std::uint8_t>(Kind::outlet);
+  // Outlet first: the walls below sample it (pressure reference at the outlet).
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] != outlet) continue;
+    s.p[i] = eos.p_background;
+    s.rho[i] = eos.rho0;
+  }
+  // Walls and inlet read only fluid and outlet particles, so writing their own p is race-free.
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t ki = kind[i];
+    if (ki != wall && ki != inlet) continue;
+    const double xi = x[i], yi = y[i];
+    double sw = 0.0, sp = 0.0, su = 0.0, sv = 0.0;
+#pragma omp simd reduction(+ : sw, sp, su, sv)
+    for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
+      const std::uint32_t j = nb[k];
+      const double dx = xi - x[j], dy = yi - y[j];
+      // Fluid and outlet particles are the "fluid side" a boundary particle samples.
+      const double is_fluid = (kind[j] == fluid || kind[j] == outlet) ? 1.0 : 0.0;
+      const double w = is_fluid * ctx.kernel.value(std::sqrt(dx * dx + dy * dy));
+      sw += w;
+      sp += w * p[j];
+      su += w * vx[j];
+      sv += w * vy[j];
+    }
+    const double pw = sw > 0.0 ? sp / sw : eos.p_background;
+    s.p[i] = pw;
+    s.rho[i] = eos.density(pw);
+    if (ki == wall) {
+      s.vx[i] = sw > 0.0 ? -su / sw : 0.0;
+      s.vy[i] = sw > 0.0 ? -sv / sw : 0.0;
+    }
+  }
+}
+
+}  // namespace adrsph

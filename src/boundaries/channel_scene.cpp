@@ -1,0 +1,90 @@
+#include "boundaries/channel_scene.hpp"
+
+#include <cmath>
+
+namespace adrsph {
+
+ChannelScene::ChannelScene(const Case& c)
+    : dx_(c.particles.dx),
+      length_(c.geometry.length),
+      half_width_(c.geometry.half_width),
+      u_max_(c.u_max()),
+      rho0_(c.fluid.rho0),
+      c_in_(c.species.c_in),
+      c_init_(c.species.c_init),
+      wall_layers_(c.particles.wall_layers),
+      inlet_layers_(c.particles.inlet_layers),
+      outlet_layers_(c.particles.outlet_layers) {
+  wall_x0_ = -(inlet_layers_ + wall_layers_) * dx_;
+  wall_x1_ = length_ + (outlet_layers_ + wall_layers_) * dx_;
+  const int ny = static_cast<int>(std::lround(2.0 * half_width_ / dx_));
+  for (int j = 0; j < ny; ++j) row_y_.push_back(-half_width_ + (j + 0.5) * dx_);
+  row_tail_x_.assign(ny, -(inlet_layers_ - 0.5) * dx_);
+}
+
+void ChannelScene::initialise(ParticleStore& s) const {
+  s.resize(0);
+  s.mass = rho0_ * dx_ * dx_;
+  const int nx = static_cast<int>(std::lround(length_ / dx_));
+  for (double yr : row_y_) {
+    const double u = inflow_velocity(yr);
+    for (int i = 0; i < inlet_layers_; ++i)
+      s.push_back(-(i + 0.5) * dx_, yr, u, 0.0, rho0_, c_in_, Kind::inlet);
+    for (int i = 0; i < nx; ++i) s.push_back((i + 0.5) * dx_, yr, u, 0.0, rho0_, c_init_, Kind::fluid);
+    for (int i = 0; i < outlet_layers_; ++i)
+      s.push_back(length_ + (i + 0.5) * dx_, yr, u, 0.0, rho0_, c_init_, Kind::outlet);
+  }
+  const int nwx = static_cast<int>(std::lround((wall_x1_ - wall_x0_) / dx_));
+  for (int k = 0; k < wall_layers_; ++k) {
+    const double yw = half_width_ + (k + 0.5) * dx_;
+    for (int i = 0; i < nwx; ++i) {
+      const double xw = wall_x0_ + (i + 0.5) * dx_;
+      s.push_back(xw, yw, 0.0, 0.0, rho0_, 0.0, Kind::wall);
+      s.push_back(xw, -yw, 0.0, 0.0, rho0_, 0.0, Kind::wall);
+    }
+  }
+}
+
+void ChannelScene::advance_inflow(double dt) {
+  for (std::size_t r = 0; r < row_y_.size(); ++r) row_tail_x_[r] += inflow_velocity(row_y_[r]) * dt;
+}
+
+void ChannelScene::update_kinds(ParticleStore& s) const {
+  const std::size_t n = s.size();
+  const double length = length_;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = static_cast<Kind>(s.kind[i]);
+    if (k == Kind::inlet && s.x[i] >= 0.0) s.kind[i] = static_cast<std::uint8_t>(Kind::fluid);
+    if (k == Kind::fluid && s.x[i] >= length) s.kind[i] = static_cast<std::uint8_t>(Kind::outlet);
+  }
+}
+
+void ChannelScene::feed_and_drain(ParticleStore& s, std::vector<char>& keep, long& lost) {
+  const double x_drop = length_ + outlet_layers_ * dx_;
+  const double x_lost = -inlet_layers_ * dx_;
+  const std::size_t n = s.size();
+  keep.assign(n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto k = static_cast<Kind>(s.kind[i]);
+    if (k == Kind::outlet && (s.x[i] > x_drop || std::fabs(s.y[i]) > half_width_)) keep[i] = 0;
+    if (k == Kind::fluid &&
+        (std::fabs(s.y[i]) > half_width_ || s.x[i] < x_lost || !std::isfinite(s.x[i]) ||
+         !std::isfinite(s.y[i]))) {
+      keep[i] = 0;
+      ++lost;
+    }
+  }
+  // Feed: keep the most upstream inlet particle of each row within one dx of the buffer end.
+  const double x_first = -(inlet_layers_ - 0.5) * dx_;
+  for (std::size_t r = 0; r < row_y_.size(); ++r) {
+    while (row_tail_x_[r] - dx_ >= x_first - 1e-9 * dx_) {
+      row_tail_x_[r] -= dx_;
+      s.push_back(row_tail_x_[r], row_y_[r], inflow_velocity(row_y_[r]), 0.0, rho0_, c_in_,
+                  Kind::inlet);
+      keep.push_back(1);
+    }
+  }
+}
+
+}  // namespace adrsph

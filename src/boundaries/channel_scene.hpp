@@ -1,0 +1,53 @@
+// The laminar-flow-reactor channel (spec section 1): fluid lattice in [0, L] x [-R, R],
+// dummy wall layers above and below, an inflow buffer upstream of x = 0 fed row by row with
+// the parabolic profile and C = c_in, and an outflow buffer downstream of x = L where
+// particles keep their velocity and C (zero gradient) until they are removed.
+#pragma once
+
+#include <vector>
+
+#include "adrsph/case.hpp"
+#include "particles/particle_store.hpp"
+
+namespace adrsph {
+
+class ChannelScene {
+ public:
+  explicit ChannelScene(const Case& c);
+
+  // u(y) = u_max (1 - (y/R)^2), eq. (13)
+  double inflow_velocity(double y) const {
+    const double eta = y / half_width_;
+    return u_max_ * (1.0 - eta * eta);
+  }
+
+  // Fill the store with the initial state: C = c_init, velocity = the analytic profile.
+  void initialise(ParticleStore& s) const;
+
+  // Bounding box that holds every particle that is not lost (for the cell grid).
+  double xmin() const { return wall_x0_; }
+  double xmax() const { return wall_x1_ + 2 * dx_; }
+  double ymin() const { return -half_width_ - wall_layers_ * dx_; }
+  double ymax() const { return half_width_ + wall_layers_ * dx_; }
+
+  // Move the inflow row generators with the rows (called every step).
+  void advance_inflow(double dt);
+  // Kind changes that keep indices: inlet -> fluid at x >= 0, fluid -> outlet at x >= L.
+  void update_kinds(ParticleStore& s) const;
+  // At a re-sort: feed new inlet particles and mark particles to remove. keep[i] = 0 for
+  // outlet particles past the buffer and for fluid particles that left through a wall or the
+  // inlet (those are counted in `lost`).
+  void feed_and_drain(ParticleStore& s, std::vector<char>& keep, long& lost);
+
+  double length() const { return length_; }
+  double half_width() const { return half_width_; }
+
+ private:
+  double dx_, length_, half_width_, u_max_, rho0_, c_in_, c_init_;
+  int wall_layers_, inlet_layers_, outlet_layers_;
+  double wall_x0_, wall_x1_;
+  std::vector<double> row_y_;       // inflow rows
+  std::vector<double> row_tail_x_;  // x of the most upstream inlet particle of each row
+};
+
+}  // namespace adrsph

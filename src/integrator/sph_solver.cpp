@@ -1,0 +1,265 @@
+#include "integrator/sph_solver.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "boundaries/boundary_extrapolation.hpp"
+#include "integrator/time_step.hpp"
+#include "schemes/density_passes.hpp"
+#include "schemes/interaction_pass.hpp"
+#include "schemes/scheme_traits.hpp"
+
+namespace adrsph {
+
+namespace {
+constexpr auto kFluid = static_cast<std::uint8_t>(Kind::fluid);
+constexpr auto kWall = static_cast<std::uint8_t>(Kind::wall);
+}  // namespace
+
+SphSolver::SphSolver(const Case& c) : case_(c), scene_(c), kernel_(c.h()) {
+  const double h = c.h();
+  phys_.mass = c.fluid.rho0 * c.particles.dx * c.particles.dx;
+  phys_.eta2 = 0.01 * h * h;
+  phys_.four_nu = 4.0 * c.fluid.nu;
+  phys_.delta_h_c0_2 = 2.0 * c.modern.delta * h * c.c0();
+  phys_.diffusivity = c.species.D;
+  phys_.eos.rho0 = c.fluid.rho0;
+  phys_.eos.c0 = c.c0();
+  phys_.eos.gamma = c.fluid.gamma;
+  phys_.eos.p_background = c.scheme == Scheme::conventional
+                               ? c.fluid.background_pressure * c.fluid.rho0 * c.c0() * c.c0()
+                               : 0.0;
+  limits_ = time_step_limits(c);
+
+  skin_ = c.particles.skin * kernel_.support;
+  cutoff_ = kernel_.support + skin_;
+  grid_ = CellGrid(scene_.xmin() - cutoff_, scene_.xmax() + cutoff_, scene_.ymin() - cutoff_,
+                   scene_.ymax() + cutoff_, cutoff_);
+
+  const bool ale = c.species.ale;
+  if (c.flow == Flow::prescribed) {
+    step_fn_ = &SphSolver::step_impl<PrescribedFlow, false>;
+    eval_fn_ = &SphSolver::evaluate_impl<PrescribedFlow, false>;
+  } else if (c.scheme == Scheme::conventional) {
+    step_fn_ = &SphSolver::step_impl<ConventionalScheme, false>;
+    eval_fn_ = &SphSolver::evaluate_impl<ConventionalScheme, false>;
+  } else if (ale) {
+    step_fn_ = &SphSolver::step_impl<ModernScheme, true>;
+    eval_fn_ = &SphSolver::evaluate_impl<ModernScheme, true>;
+  } else {
+    step_fn_ = &SphSolver::step_impl<ModernScheme, false>;
+    eval_fn_ = &SphSolver::evaluate_impl<ModernScheme, false>;
+  }
+
+  scene_.initialise(store_);
+  for (std::size_t i = 0; i < store_.size(); ++i) store_.p[i] = phys_.eos.p_background;
+  rebuild();
+}
+
+std::size_t SphSolver::fluid_count() const {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < store_.size(); ++i) n += store_.kind[i] == kFluid;
+  return n;
+}
+
+void SphSolver::rebuild() {
+  {
+    ScopedPhase timer(timers_, Phase::sort);
+    scene_.feed_and_drain(store_, keep_, lost_);
+    const std::size_t n = store_.size();
+    // Removed particles are sent outside the grid so the counting sort drops them.
+    for (std::size_t i = 0; i < n; ++i)
+      if (!keep_[i]) store_.x[i] = std::nan("");
+    grid_.sort(std::span(store_.x).first(n), std::span(store_.y).first(n), order_, outside_);
+    for (std::uint32_t i : outside_)
+      if (std::isfinite(store_.x[i]) && store_.kind[i] == kFluid) ++lost_;
+    store_.permute(order_);
+  }
+  {
+    ScopedPhase timer(timers_, Phase::neighbours);
+    const std::size_t n = store_.size();
+    list_.build(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n), cutoff_,
+                static_cast<std::uint32_t>(n));
+  }
+  moved_ = 0.0;
+}
+
+void SphSolver::evaluate() { (this->*eval_fn_)(); }
+
+template <class S, bool Ale>
+void SphSolver::evaluate_impl() {
+  const PassContext ctx{kernel_, list_, phys_};
+  if constexpr (S::summation_density) {
+    ScopedPhase timer(timers_, Phase::density);
+    summation_density(store_, ctx);
+  }
+  if constexpr (S::momentum) {
+    {
+      ScopedPhase timer(timers_, Phase::density);
+      fluid_pressure(store_, phys_.eos);
+    }
+    {
+      ScopedPhase timer(timers_, Phase::boundaries);
+      extrapolate_to_boundaries(store_, ctx);
+    }
+    ScopedPhase timer(timers_, Phase::density);
+    particle_volumes(store_, phys_.mass);
+  }
+  ScopedPhase timer(timers_, Phase::forces);
+  interaction_pass<S, Ale>(store_, ctx);
+}
+
+template <class S>
+void SphSolver::advance(double a) {
+  ScopedPhase timer(timers_, Phase::integration);
+  ParticleStore& s = store_;
+  const std::size_t n = s.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t k = s.kind[i];
+    if (k == kWall) continue;
+    if (k == kFluid && S::momentum) {
+      // Midpoint: positions move with the current (transport) velocity, then u is updated.
+      double tx = s.vx[i], ty = s.vy[i];
+      if constexpr (S::shifting) {
+        tx += s.sx[i];
+        ty += s.sy[i];
+      }
+      s.x[i] = s.x0[i] + a * tx;
+      s.y[i] = s.y0[i] + a * ty;
+      s.vx[i] = s.vx0[i] + a * s.ax[i];
+      s.vy[i] = s.vy0[i] + a * s.ay[i];
+    } else {
+      // Inlet (prescribed profile), outlet (frozen velocity), prescribed-flow fluid.
+      s.x[i] = s.x0[i] + a * s.vx[i];
+      s.y[i] = s.y0[i] + a * s.vy[i];
+    }
+    if (k == kFluid) {
+      if constexpr (S::continuity) s.rho[i] = s.rho0[i] + a * s.drho[i];
+      s.c[i] = s.c0[i] + a * s.dc[i];
+    }
+  }
+}
+
+template <class S, bool Ale>
+bool SphSolver::step_impl(double dt) {
+  {
+    ScopedPhase timer(timers_, Phase::integration);
+    store_.save_state();
+  }
+  if constexpr (S::shifting) {
+    phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
+    phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
+  }
+  evaluate_impl<S, Ale>();
+  advance<S>(0.5 * dt);
+  evaluate_impl<S, Ale>();
+  advance<S>(dt);
+  {
+    ScopedPhase timer(timers_, Phase::integration);
+    // First-order reaction, exact over the step: it commutes with the linear transport
+    // operators because k is uniform (spec section 6).
+    const double decay = species_decay(case_.species.k, dt);
+    const std::size_t n = store_.size();
+#pragma omp parallel for simd schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      if (store_.kind[i] == kFluid) store_.c[i] *= decay;
+  }
+  {
+    ScopedPhase timer(timers_, Phase::boundaries);
+    scene_.advance_inflow(dt);
+    scene_.update_kinds(store_);
+  }
+  if (!check_state(dt)) return false;
+  t_ += dt;
+  ++steps_;
+  particle_steps_ += static_cast<double>(store_.size());
+  if (2.0 * moved_ > skin_) {
+    const long lost_before = lost_;
+    rebuild();
+    if (lost_ > lost_before) {
+      std::ostringstream m;
+      m << (lost_ - lost_before) << " fluid particle(s) left the channel through a wall or "
+        << "the inlet by t = " << t_ << " s (step " << steps_ << "). The flow near the "
+        << "boundaries is under-resolved or the step too large: lower time.cfl (now "
+        << case_.time.cfl << ") or keep particles.wall_layers >= 3.";
+      failure_ = m.str();
+      return false;
+    }
+  }
+  return true;
+}
+
+bool SphSolver::check_state(double dt) {
+  ScopedPhase timer(timers_, Phase::integration);
+  ParticleStore& s = store_;
+  const std::size_t n = s.size();
+  int bad = 0;
+  double vmax2 = 0.0, drho_max = 0.0;
+  const double rho0 = case_.fluid.rho0;
+#pragma omp parallel for schedule(static) reduction(max : vmax2, drho_max) reduction(+ : bad)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] == kWall) continue;
+    const double tx = s.vx[i] + s.sx[i], ty = s.vy[i] + s.sy[i];
+    const double v2 = tx * tx + ty * ty;
+    const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(v2) &&
+                        std::isfinite(s.rho[i]) && std::isfinite(s.c[i]);
+    bad += finite ? 0 : 1;
+    vmax2 = std::max(vmax2, finite ? v2 : 0.0);
+    drho_max = std::max(drho_max, finite ? std::fabs(s.rho[i] / rho0 - 1.0) : 0.0);
+  }
+  const double vmax = std::sqrt(vmax2);
+  std::ostringstream m;
+  if (bad > 0) {
+    m << bad << " particle(s) with non-finite state (NaN or inf) at t = " << t_ + dt
+      << " s, step " << steps_ + 1 << ", dt = " << dt << " s. ";
+  } else if (case_.flow == Flow::wcsph && vmax > 0.5 * case_.c0()) {
+    m << "particle speed " << vmax << " mm/s exceeds 0.5 c0 = " << 0.5 * case_.c0()
+      << " mm/s at t = " << t_ + dt << " s, step " << steps_ + 1
+      << ": the flow blew up, weak compressibility no longer holds. ";
+  } else if (case_.flow == Flow::wcsph && drho_max > 0.2) {
+    m << "density deviates by " << 100 * drho_max << "% from rho0 at t = " << t_ + dt
+      << " s, step " << steps_ + 1 << ": the flow blew up. ";
+  }
+  if (!m.str().empty()) {
+    m << "The time step is above the stable limit for this case: lower time.cfl (now "
+      << case_.time.cfl << ")";
+    if (case_.time.dt > 0) m << " or time.dt (now " << case_.time.dt << " s, limit "
+                             << limits_.acoustic << " s)";
+    m << ", or time.diffusion_number (now " << case_.time.diffusion_number << ").";
+    failure_ = m.str();
+    // Restore the last good state (start of this step).
+    s.x = s.x0;
+    s.y = s.y0;
+    s.vx = s.vx0;
+    s.vy = s.vy0;
+    s.rho = s.rho0;
+    s.c = s.c0;
+    return false;
+  }
+  moved_ += vmax * dt;
+  return true;
+}
+
+bool SphSolver::step(double dt) { return (this->*step_fn_)(dt); }
+
+FieldFrame SphSolver::frame(std::vector<double>& pressure_pa) const {
+  const std::size_t n = store_.size();
+  pressure_pa.resize(n);
+  // Internal pressure unit: kg/m^3 * mm^2/s^2 = 1e-6 Pa.
+  for (std::size_t i = 0; i < n; ++i) pressure_pa[i] = store_.p[i] * 1e-6;
+  FieldFrame f;
+  f.t = t_;
+  f.step = steps_;
+  f.x = std::span(store_.x).first(n);
+  f.y = std::span(store_.y).first(n);
+  f.vx = std::span(store_.vx).first(n);
+  f.vy = std::span(store_.vy).first(n);
+  f.rho = std::span(store_.rho).first(n);
+  f.p = pressure_pa;
+  f.c = std::span(store_.c).first(n);
+  f.kind = std::span(store_.kind).first(n);
+  return f;
+}
+
+}  // namespace adrsph

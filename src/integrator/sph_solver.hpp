@@ -1,0 +1,74 @@
+// The SPH solver: owns the particles, the neighbour structures and the scene, and advances
+// the state by explicit midpoint steps (two evaluations per step).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "adrsph/case.hpp"
+#include "adrsph/simulation.hpp"
+#include "analysis/probes_sph.hpp"
+#include "boundaries/channel_scene.hpp"
+#include "integrator/phase_timers.hpp"
+#include "neighbours/cell_grid.hpp"
+#include "neighbours/neighbour_list.hpp"
+#include "particles/particle_store.hpp"
+#include "schemes/pass_context.hpp"
+
+namespace adrsph {
+
+class SphSolver {
+ public:
+  explicit SphSolver(const Case& c);
+
+  // One explicit midpoint step of size dt. Returns false (and restores the state at the start
+  // of the step) when a guard trips; failure() then says why and what to change.
+  bool step(double dt);
+
+  double time() const { return t_; }
+  long steps() const { return steps_; }
+  const TimeStepLimits& dt_limits() const { return limits_; }
+  const ParticleStore& particles() const { return store_; }
+  ParticleStore& particles() { return store_; }
+  PhaseTimers& timers() { return timers_; }
+  const std::string& failure() const { return failure_; }
+  long lost_particles() const { return lost_; }
+  std::size_t fluid_count() const;
+  double mean_neighbours() const { return list_.mean_neighbours(); }
+  double particle_steps() const { return particle_steps_; }
+  ProbeSampler sampler() const { return ProbeSampler{store_, grid_, kernel_}; }
+  FieldFrame frame(std::vector<double>& pressure_pa) const;
+  // Recompute the derived fields (density, pressure, volumes) and rates of the current state
+  // without advancing: used by tests and benchmarks.
+  void evaluate();
+  // Re-sort, feed/drain the buffers and rebuild the neighbour lists.
+  void rebuild();
+
+ private:
+  template <class S, bool Ale> bool step_impl(double dt);
+  template <class S, bool Ale> void evaluate_impl();
+  template <class S> void advance(double a);  // state = saved state + a * rates
+  bool check_state(double dt);
+
+  Case case_;
+  ChannelScene scene_;
+  QuinticKernel kernel_;
+  PhysicsConstants phys_;
+  TimeStepLimits limits_;
+  ParticleStore store_;
+  CellGrid grid_;
+  NeighbourList list_;
+  PhaseTimers timers_;
+  bool (SphSolver::*step_fn_)(double) = nullptr;
+  void (SphSolver::*eval_fn_)() = nullptr;
+  double cutoff_ = 0.0, skin_ = 0.0, moved_ = 0.0;
+  double t_ = 0.0;
+  long steps_ = 0;
+  long lost_ = 0;
+  double particle_steps_ = 0.0;
+  std::string failure_;
+  std::vector<std::uint32_t> order_, outside_;
+  std::vector<char> keep_;
+};
+
+}  // namespace adrsph

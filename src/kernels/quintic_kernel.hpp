@@ -1,0 +1,44 @@
+// Quintic B-spline (Schoenberg M6) kernel in 2D, support 3h (spec section 1).
+//   W(q) = sigma [ (3-q)_+^5 - 6 (2-q)_+^5 + 15 (1-q)_+^5 ],  sigma = 7 / (478 pi h^2)
+// Written branch-free, (x)_+ = (x + |x|) / 2, so the neighbour loops vectorise
+// (std::max stops g++ from vectorising, see performance-notes).
+#pragma once
+
+#include <cmath>
+#include <numbers>
+
+namespace adrsph {
+
+struct QuinticKernel {
+  double h = 1.0;
+  double inv_h = 1.0;
+  double sigma = 0.0;  // 2D normalisation 7 / (478 pi h^2)
+  double support = 3.0;
+
+  explicit QuinticKernel(double h_) : h(h_), inv_h(1.0 / h_) {
+    sigma = 7.0 / (478.0 * std::numbers::pi * h * h);
+    support = 3.0 * h;
+  }
+
+  static double positive(double v) { return 0.5 * (v + std::fabs(v)); }
+
+  // W(r)
+  double value(double r) const {
+    const double q = r * inv_h;
+    const double t3 = positive(3.0 - q), t2 = positive(2.0 - q), t1 = positive(1.0 - q);
+    const double t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
+    return sigma * (t3_2 * t3_2 * t3 - 6.0 * t2_2 * t2_2 * t2 + 15.0 * t1_2 * t1_2 * t1);
+  }
+
+  // (dW/dr) / r, so that grad_i W_ij = F(r_ij) * (r_i - r_j). Zero beyond the support and
+  // finite at r = 0 (dW/dr vanishes there).
+  double gradient_factor(double r) const {
+    const double q = r * inv_h;
+    const double t3 = positive(3.0 - q), t2 = positive(2.0 - q), t1 = positive(1.0 - q);
+    const double t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
+    const double dw_dq = -5.0 * t3_2 * t3_2 + 30.0 * t2_2 * t2_2 - 75.0 * t1_2 * t1_2;
+    return sigma * inv_h * dw_dq / (r + 1e-30);
+  }
+};
+
+}  // namespace adrsph

@@ -1,0 +1,20 @@
+// Density evolution of the modern scheme, eq. (8):
+//   d rho_i/dt = rho_i sum_j V_j (u_i - u_j) . grad_i W_ij + delta h D_i
+// with the Ferrari / Molteni-Colagrossi density diffusion D_i = c0 lap(rho)_i,
+//   lap(f)_i = 2 sum_j V_j (f_i - f_j) (r_ij . grad W_ij) / (r_ij^2 + eta^2).
+#pragma once
+
+namespace adrsph {
+
+// rho_i V_j u_ij . grad W_ij
+inline double continuity_pair(double rho_i, double vol_j, double u_dot_gradw) {
+  return rho_i * vol_j * u_dot_gradw;
+}
+
+// delta h c0 * 2 V_j (rho_i - rho_j) lap_weight; `delta_h_c0_2` = 2 delta h c0.
+inline double density_diffusion_pair(double delta_h_c0_2, double vol_j, double rho_i,
+                                     double rho_j, double lap_weight) {
+  return delta_h_c0_2 * vol_j * (rho_i - rho_j) * lap_weight;
+}
+
+}  // namespace adrsph
