@@ -1,0 +1,39 @@
+// Internal: the cell-centred finite-volume discretisation of the reference problem
+// (spec section 5). Each cell balance, per unit depth:
+//   [F_e - F_w]_advection - [G_e - G_w]_diffusion + k C_P dx dy = S_P dx dy
+// advective flux F = u_j dy C_face (u > 0: upwind side), diffusive flux G = D dA dC/dn
+// (second-order central), inlet face: Dirichlet, walls and outlet: zero diffusive flux,
+// outlet advective face value = C_P (zero gradient).
+#pragma once
+
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "adrsph/reference.hpp"
+
+namespace adrsph::reference::detail {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// Cell-averaged velocity of row j, (1/dy) * integral of u over the cell (Simpson's rule:
+// exact for the parabola), so that sum_j u_j dy is the exact flow rate.
+std::vector<double> cell_average_velocity(const Problem& p, const Grid& g);
+
+struct UpwindSystem {
+  SparseMatrix A;     // first-order upwind advection + central diffusion + reaction
+  Eigen::VectorXd b;  // inlet Dirichlet terms + source
+};
+UpwindSystem assemble_upwind_system(const Problem& p, const Grid& g,
+                                    const std::vector<double>& u_cell);
+
+// Net high-order correction of the advective flux per cell, (Fc_e - Fc_w), with
+// Fc_{i+1/2} = u_j dy * slope_i / 2 (limited slope of cell i; ghost C_{-1} = 2 C_in - C_0).
+// Moving it to the right-hand side is the deferred correction.
+void advective_correction(const Problem& p, const Grid& g, const std::vector<double>& u_cell,
+                          Limiter limiter, const Eigen::VectorXd& c, Eigen::VectorXd& corr);
+
+// Limited slope from the upwind and downwind differences (TVD region, second order
+// where smooth: both return the true difference for dl == dr).
+double limited_slope(Limiter limiter, double dl, double dr);
+
+}  // namespace adrsph::reference::detail

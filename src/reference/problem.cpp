@@ -1,0 +1,47 @@
+// The reactor problem of a case (spec section 1): parabolic profile with u_max = 2 u_bulk.
+#include "adrsph/reference.hpp"
+
+namespace adrsph::reference {
+
+std::function<double(double)> parabolic_profile(double u_max, double half_width) {
+  return [u_max, half_width](double y) {
+    const double eta = y / half_width;
+    return u_max * (1.0 - eta * eta);
+  };
+}
+
+Problem problem_from_case(const Case& c) {
+  Problem p;
+  p.length = c.geometry.length;
+  p.half_width = c.geometry.half_width;
+  p.D = c.species.D;
+  p.k = c.species.k;
+  p.c_in = c.species.c_in;
+  p.u_bulk = c.fluid.u_bulk;
+  p.velocity = parabolic_profile(c.u_max(), c.geometry.half_width);
+  return p;
+}
+
+const char* to_string(Limiter l) {
+  switch (l) {
+    case Limiter::upwind:
+      return "upwind";
+    case Limiter::minmod:
+      return "minmod";
+    case Limiter::van_leer:
+      return "van_leer";
+  }
+  return "?";
+}
+
+const char* to_string(LinearSolver s) {
+  switch (s) {
+    case LinearSolver::sparse_lu:
+      return "SparseLU";
+    case LinearSolver::bicgstab_ilut:
+      return "BiCGSTAB+IncompleteLUT";
+  }
+  return "?";
+}
+
+}  // namespace adrsph::reference
