@@ -80,11 +80,14 @@ struct Case {
   double peclet() const { return fluid.u_bulk * geometry.length / species.D; }
 };
 
-// A bad case file or override. `what()` names the file, the key and what was expected.
+// A bad case file or override. `what()` names the file, the key and what was expected
+// ("FILE: key 'K': EXPECTED", or "FILE: EXPECTED" when no key applies, e.g. a syntax error).
 class CaseError : public std::runtime_error {
  public:
   CaseError(const std::string& file, const std::string& key, const std::string& expected)
-      : std::runtime_error(file + ": key '" + key + "': " + expected), file_(file), key_(key) {}
+      : std::runtime_error(file + (key.empty() ? "" : ": key '" + key + "'") + ": " + expected),
+        file_(file),
+        key_(key) {}
   const std::string& file() const { return file_; }
   const std::string& key() const { return key_; }
 

@@ -1,0 +1,39 @@
+// The run command's observer: the progress line on a terminal, and field frames to HDF5.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+#include "adrsph/io/fields_h5.hpp"
+#include "adrsph/simulation.hpp"
+
+namespace adrsph::cli {
+
+class CliObserver : public RunObserver {
+ public:
+  // `fields_file` is created on the first frame. `progress`: print the progress line.
+  CliObserver(std::filesystem::path fields_file, bool progress);
+
+  void on_progress(const Progress& p) override;
+  void on_fields(const FieldFrame& f) override;
+
+  // Ends the progress line (newline) if one was printed.
+  void end_progress();
+  // Closes fields.h5; returns the frames written (empty when none).
+  std::vector<FieldFrameInfo> close_fields();
+
+ private:
+  std::filesystem::path fields_file_;
+  bool progress_;
+  bool printed_ = false;
+  std::chrono::steady_clock::time_point last_print_{};
+  std::unique_ptr<FieldsWriter> writer_;
+};
+
+// "t = 1.234/10 s  step 12345  1234 steps/s  ETA 0:12:34"
+std::string format_progress(const Progress& p);
+// 754 s -> "0:12:34"
+std::string format_hms(double seconds);
+
+}  // namespace adrsph::cli

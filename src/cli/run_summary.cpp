@@ -1,0 +1,67 @@
+// End-of-run summary: case, numbers, phase timers, station averages, where the files are.
+#include "cli/run_summary.hpp"
+
+#include <cstdio>
+#include <string>
+
+namespace adrsph::cli {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+void print_phases(std::ostream& os, const RunResult& r) {
+  if (r.phase_seconds.empty()) return;
+  double total = 0.0;
+  for (const auto& [name, s] : r.phase_seconds) total += s;
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "  %-24s %10s %7s\n", "phase", "seconds", "%");
+  os << buf;
+  for (const auto& [name, s] : r.phase_seconds) {
+    std::snprintf(buf, sizeof buf, "  %-24s %10.3f %6.1f%%\n", name.c_str(), s,
+                  total > 0 ? 100.0 * s / total : 0.0);
+    os << buf;
+  }
+}
+
+}  // namespace
+
+void print_summary(std::ostream& os, const Case& c, const RunResult& r, const SummaryInfo& s) {
+  const double wall = r.wall_s > 0 ? r.wall_s : s.wall_s;
+  os << "\nadrsph run: " << c.name << "  (" << c.source.string() << ")\n"
+     << "  scheme " << to_string(c.scheme) << ", flow " << to_string(c.flow) << ", Pe "
+     << fmt("%g", c.peclet()) << " (D = " << fmt("%g", c.species.D)
+     << " mm^2/s, k = " << fmt("%g", c.species.k) << " 1/s), dx " << fmt("%g", c.particles.dx)
+     << " mm\n"
+     << "  particles " << r.n_particles << " (fluid " << r.n_fluid << "), threads " << s.threads
+     << "\n"
+     << "  steps " << r.steps << ", simulated " << fmt("%.4g", r.t_reached) << " s of "
+     << fmt("%g", c.time.t_end) << " s, wall " << fmt("%.2f", wall) << " s, "
+     << fmt("%.3g", r.particle_steps_per_s) << " particle-steps/s\n";
+  if (r.dt.chosen > 0)
+    os << "  dt " << fmt("%.3g", r.dt.chosen) << " s ("
+       << (r.dt.binding.empty() ? "?" : r.dt.binding) << " limit)\n";
+  os << "  steady state: "
+     << (r.steady ? "yes, at t = " + fmt("%.4g", r.t_steady) + " s" : std::string("no")) << "\n";
+  if (r.lost_particles > 0) os << "  lost particles: " << r.lost_particles << "\n";
+  print_phases(os, r);
+  if (!r.stations.x_mm.empty()) {
+    os << "  section average C:";
+    for (std::size_t i = 0; i < r.stations.x_mm.size() && i < r.stations.c_mean.size(); ++i)
+      os << "  x = " << fmt("%g", r.stations.x_mm[i]) << ": " << fmt("%.5f", r.stations.c_mean[i]);
+    os << " mol/m^3";
+    if (r.average_window > 0)
+      os << " (averaged over the last " << fmt("%g", r.average_window) << " s)";
+    os << "\n";
+  }
+  os << "  status: " << r.status;
+  if (!r.message.empty()) os << " (" << r.message << ")";
+  os << "\n  files in " << s.out_dir.string() << "/:";
+  for (std::size_t i = 0; i < s.files.size(); ++i) os << (i ? ", " : " ") << s.files[i];
+  os << "\n";
+}
+
+}  // namespace adrsph::cli

@@ -1,0 +1,79 @@
+// run.json writer (nlohmann::ordered_json keeps the documented key order).
+#include "adrsph/io/run_json.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace adrsph {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Non-finite numbers become null (JSON has no NaN).
+Json number(double v) {
+  return std::isfinite(v) ? Json(v) : Json(nullptr);
+}
+
+// "25", "50", "100", "12.5": the station abscissa as an object key.
+std::string x_key(double x) {
+  std::ostringstream os;
+  os.precision(10);
+  os << x;
+  return os.str();
+}
+
+}  // namespace
+
+std::string run_json_text(const Case& c, const RunResult& r, const RunContext& ctx) {
+  Json j;
+  j["case"] = c.name;
+  j["case_file"] = c.source.string();
+  j["scheme"] = to_string(c.scheme);
+  j["flow"] = to_string(c.flow);
+  j["Pe"] = number(c.peclet());
+  j["D"] = c.species.D;
+  j["k"] = c.species.k;
+  j["dx"] = c.particles.dx;
+  j["particles"] = r.n_particles;
+  j["fluid_particles"] = r.n_fluid;
+  j["threads"] = ctx.threads;
+  j["t_end"] = c.time.t_end;
+  j["t_reached"] = number(r.t_reached);
+  j["steps"] = r.steps;
+  j["wall_seconds"] = number(r.wall_s > 0.0 ? r.wall_s : ctx.wall_seconds);
+  j["particle_steps_per_second"] = number(r.particle_steps_per_s);
+  j["dt"] = Json{{"chosen", number(r.dt.chosen)},     {"binding", r.dt.binding},
+                 {"acoustic", number(r.dt.acoustic)}, {"advective", number(r.dt.advective)},
+                 {"viscous", number(r.dt.viscous)},   {"diffusion", number(r.dt.diffusion)}};
+  j["steady"] = r.steady;
+  j["t_steady"] = r.steady ? number(r.t_steady) : Json(nullptr);
+  j["lost_particles"] = r.lost_particles;
+  j["status"] = r.status;
+  j["message"] = r.message;
+  j["probe_interpolation"] = r.probe_interpolation;
+  j["average_window"] = r.average_window;
+  Json phases = Json::object();
+  for (const auto& [name, s] : r.phase_seconds) phases[name] = number(s);
+  j["phase_seconds"] = phases;
+  Json stations = Json::object();
+  for (std::size_t i = 0; i < r.stations.x_mm.size() && i < r.stations.c_mean.size(); ++i)
+    stations[x_key(r.stations.x_mm[i])] = number(r.stations.c_mean[i]);
+  j["stations"] = stations;
+  j["field_frames"] = ctx.field_frames;
+  j["version"] = "0.1.0";
+  return j.dump(2) + "\n";
+}
+
+void write_run_json(const std::filesystem::path& file, const Case& c, const RunResult& r,
+                    const RunContext& ctx) {
+  const std::string text = run_json_text(c, r, ctx);
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(file.string() + ": cannot write run.json");
+}
+
+}  // namespace adrsph
