@@ -1,0 +1,142 @@
+// run.json from a synthetic result: every documented key, its value and its type.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "adrsph/io/run_json.hpp"
+#include "io_test_util.hpp"
+
+namespace adrsph {
+namespace {
+
+RunResult sample_result() {
+  RunResult r;
+  r.t_reached = 4.5;
+  r.steps = 1234;
+  r.wall_s = 12.5;
+  r.n_particles = 5000;
+  r.n_fluid = 4000;
+  r.particle_steps_per_s = 4.9e5;
+  r.dt = {1e-4, 2e-4, 3e-3, 5e-3, 1e-4, "acoustic"};
+  r.steady = true;
+  r.t_steady = 4.25;
+  r.phase_seconds = {{"neighbours", 3.0}, {"forces", 7.5}};
+  r.stations = {{25.0, 50.0, 100.0}, {1.38, 1.04, 0.63}};
+  r.average_window = 0.5;
+  r.probe_interpolation = "Shepard";
+  return r;
+}
+
+Case sample_case() {
+  Case c;
+  c.name = "sample";
+  c.source = "cases/sample.toml";
+  c.scheme = Scheme::conventional;
+  c.flow = Flow::prescribed;
+  c.particles.dx = 0.5;
+  return c;
+}
+
+TEST(RunJson, EveryKey) {
+  const auto j = nlohmann::json::parse(run_json_text(sample_case(), sample_result(), {2, 13.0, 3}));
+  for (const char* key : {"case",
+                          "case_file",
+                          "scheme",
+                          "flow",
+                          "Pe",
+                          "D",
+                          "k",
+                          "dx",
+                          "particles",
+                          "fluid_particles",
+                          "threads",
+                          "t_end",
+                          "t_reached",
+                          "steps",
+                          "wall_seconds",
+                          "particle_steps_per_second",
+                          "dt",
+                          "steady",
+                          "t_steady",
+                          "lost_particles",
+                          "status",
+                          "message",
+                          "probe_interpolation",
+                          "average_window",
+                          "phase_seconds",
+                          "stations"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["case"], "sample");
+  EXPECT_EQ(j["case_file"], "cases/sample.toml");
+  EXPECT_EQ(j["scheme"], "conventional");
+  EXPECT_EQ(j["flow"], "prescribed");
+  EXPECT_DOUBLE_EQ(j["Pe"].get<double>(), 1000.0);
+  EXPECT_DOUBLE_EQ(j["D"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(j["k"].get<double>(), 1.462);
+  EXPECT_DOUBLE_EQ(j["dx"].get<double>(), 0.5);
+  EXPECT_EQ(j["particles"], 5000);
+  EXPECT_EQ(j["fluid_particles"], 4000);
+  EXPECT_EQ(j["threads"], 2);
+  EXPECT_DOUBLE_EQ(j["t_end"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(j["t_reached"].get<double>(), 4.5);
+  EXPECT_EQ(j["steps"], 1234);
+  EXPECT_DOUBLE_EQ(j["wall_seconds"].get<double>(), 12.5);  // the simulation's own timing
+  EXPECT_DOUBLE_EQ(j["particle_steps_per_second"].get<double>(), 4.9e5);
+  EXPECT_DOUBLE_EQ(j["dt"]["chosen"].get<double>(), 1e-4);
+  EXPECT_EQ(j["dt"]["binding"], "acoustic");
+  EXPECT_DOUBLE_EQ(j["dt"]["acoustic"].get<double>(), 1e-4);
+  EXPECT_DOUBLE_EQ(j["dt"]["advective"].get<double>(), 2e-4);
+  EXPECT_DOUBLE_EQ(j["dt"]["viscous"].get<double>(), 3e-3);
+  EXPECT_DOUBLE_EQ(j["dt"]["diffusion"].get<double>(), 5e-3);
+  EXPECT_EQ(j["steady"], true);
+  EXPECT_DOUBLE_EQ(j["t_steady"].get<double>(), 4.25);
+  EXPECT_EQ(j["lost_particles"], 0);
+  EXPECT_EQ(j["status"], "ok");
+  EXPECT_EQ(j["message"], "");
+  EXPECT_EQ(j["probe_interpolation"], "Shepard");
+  EXPECT_DOUBLE_EQ(j["average_window"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["phase_seconds"]["neighbours"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(j["phase_seconds"]["forces"].get<double>(), 7.5);
+  EXPECT_DOUBLE_EQ(j["stations"]["25"].get<double>(), 1.38);
+  EXPECT_DOUBLE_EQ(j["stations"]["50"].get<double>(), 1.04);
+  EXPECT_DOUBLE_EQ(j["stations"]["100"].get<double>(), 0.63);
+  EXPECT_EQ(j["field_frames"], 3);
+}
+
+TEST(RunJson, NotSteadyAndFailed) {
+  RunResult r = sample_result();
+  r.steady = false;
+  r.status = "failed";
+  r.message = "non-finite density at t = 0.1 s";
+  r.wall_s = 0.0;
+  r.lost_particles = 7;
+  r.stations.c_mean[1] = std::nan("");
+  const auto j = nlohmann::json::parse(run_json_text(sample_case(), r, {1, 13.0, 0}));
+  EXPECT_TRUE(j["t_steady"].is_null());
+  EXPECT_EQ(j["steady"], false);
+  EXPECT_EQ(j["status"], "failed");
+  EXPECT_EQ(j["message"], "non-finite density at t = 0.1 s");
+  EXPECT_DOUBLE_EQ(j["wall_seconds"].get<double>(), 13.0);  // the CLI's timing as fallback
+  EXPECT_EQ(j["lost_particles"], 7);
+  EXPECT_TRUE(j["stations"]["50"].is_null());  // JSON has no NaN
+}
+
+TEST(RunJson, InfinitePecletIsNull) {
+  Case c = sample_case();
+  c.species.D = 0.0;
+  const auto j = nlohmann::json::parse(run_json_text(c, sample_result(), {}));
+  EXPECT_TRUE(j["Pe"].is_null());
+}
+
+TEST(RunJson, WritesTheFile) {
+  test::TempDir dir;
+  write_run_json(dir / "run.json", sample_case(), sample_result(), {});
+  const auto j = nlohmann::json::parse(test::read_file(dir / "run.json"));
+  EXPECT_EQ(j["case"], "sample");
+  EXPECT_THROW(write_run_json(dir / "nodir" / "run.json", sample_case(), sample_result(), {}),
+               std::runtime_error);
+}
+
+}  // namespace
+}  // namespace adrsph
