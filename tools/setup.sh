@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages adrsph needs (only those missing), then configures and
+# builds into build/ (Release). Run as root, or as a user with sudo.
+#   tools/setup.sh                   # install + build
+#   ADRSPH_WERROR=ON tools/setup.sh  # warnings as errors (what tools/test.sh and CI use)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake pkg-config            # compiler (GCC, with OpenMP), CMake
+  libeigen3-dev libhdf5-dev                   # linear algebra, field output
+  libtomlplusplus-dev libcli11-dev            # case files, command line
+  nlohmann-json3-dev                          # run.json
+  libgtest-dev libgmock-dev libbenchmark-dev  # tests, benchmarks
+  python3 python3-matplotlib python3-h5py     # tools/*.py (plots)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=()
+  if [[ $(id -u) -ne 0 ]]; then
+    command -v sudo >/dev/null || { echo "setup: run as root to install: ${missing[*]}" >&2; exit 1; }
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}"
+else
+  echo "setup: all Debian packages present"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DADRSPH_WERROR="${ADRSPH_WERROR:-OFF}"
+cmake --build build -j2
