@@ -1,11 +1,13 @@
-// Steady state: the probe profiles stop changing. At every check the largest change of any
-// probe value since the previous check, relative to the inlet concentration, is compared with
-// the tolerance; the run is steady once it stayed below for the whole window.
+// Steady state: the probe profiles stop changing. Single snapshots carry sampling noise
+// (rows of particles slide past the probe points), so the test compares the MEAN probe
+// profiles over two consecutive windows: the run is steady once the largest change of any
+// probe value between the window [t - w, t] and [t - 2w, t - w], relative to the inlet
+// concentration, is below the tolerance.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
+#include <deque>
 
 #include "adrsph/probes.hpp"
 
@@ -16,37 +18,18 @@ class SteadyStateDetector {
   SteadyStateDetector(double tol, double window, double scale)
       : tol_(tol), window_(window), scale_(scale) {}
 
-  // Returns the change measure of this check (0 for the first one).
-  double update(double t, const ProbeTable& p) {
-    double change = 0.0;
-    if (prev_) {
-      auto diff = [&](const std::vector<double>& a, const std::vector<double>& b) {
-        for (std::size_t i = 0; i < a.size(); ++i) change = std::max(change, std::fabs(a[i] - b[i]));
-      };
-      diff(p.c_y0, prev_->c_y0);
-      diff(p.c_yp25, prev_->c_yp25);
-      diff(p.c_ym25, prev_->c_ym25);
-      diff(p.c_mean, prev_->c_mean);
-      change /= scale_;
-      if (!(change < tol_)) below_since_.reset();
-      else if (!below_since_) below_since_ = t_prev_;
-      if (below_since_ && !steady_ && t - *below_since_ >= window_ - 1e-12) {
-        steady_ = true;
-        t_steady_ = t;
-      }
-    }
-    prev_ = p;
-    t_prev_ = t;
-    return change;
-  }
+  // Record the probes at time t. Returns the change measure (infinity until two full
+  // windows have been seen).
+  double update(double t, const ProbeTable& p);
   bool steady() const { return steady_; }
   double t_steady() const { return t_steady_; }
 
  private:
+  // Sum of the profiles of the samples with time in (t0, t1].
+  std::vector<double> window_mean(double t0, double t1) const;
+
   double tol_, window_, scale_;
-  std::optional<ProbeTable> prev_;
-  double t_prev_ = 0.0;
-  std::optional<double> below_since_;
+  std::deque<std::pair<double, std::vector<double>>> samples_;  // (t, flattened profiles)
   bool steady_ = false;
   double t_steady_ = 0.0;
 };

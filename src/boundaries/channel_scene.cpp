@@ -49,15 +49,26 @@ void ChannelScene::advance_inflow(double dt) {
   for (std::size_t r = 0; r < row_y_.size(); ++r) row_tail_x_[r] += inflow_velocity(row_y_[r]) * dt;
 }
 
-void ChannelScene::update_kinds(ParticleStore& s) const {
+ChannelScene::Crossings ChannelScene::update_kinds(ParticleStore& s) const {
   const std::size_t n = s.size();
   const double length = length_;
-#pragma omp parallel for schedule(static)
+  long entered = 0, left = 0;
+  double species_in = 0.0, species_out = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : entered, left, species_in, species_out)
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Kind>(s.kind[i]);
-    if (k == Kind::inlet && s.x[i] >= 0.0) s.kind[i] = static_cast<std::uint8_t>(Kind::fluid);
-    if (k == Kind::fluid && s.x[i] >= length) s.kind[i] = static_cast<std::uint8_t>(Kind::outlet);
+    if (k == Kind::inlet && s.x[i] >= 0.0) {
+      s.kind[i] = static_cast<std::uint8_t>(Kind::fluid);
+      ++entered;
+      species_in += s.vol[i] * s.c[i];
+    }
+    if (k == Kind::fluid && s.x[i] >= length) {
+      s.kind[i] = static_cast<std::uint8_t>(Kind::outlet);
+      ++left;
+      species_out += s.vol[i] * s.c[i];
+    }
   }
+  return {entered, left, species_in, species_out};
 }
 
 void ChannelScene::feed_and_drain(ParticleStore& s, std::vector<char>& keep, long& lost) {

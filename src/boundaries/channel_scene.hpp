@@ -32,8 +32,14 @@ class ChannelScene {
 
   // Move the inflow row generators with the rows (called every step).
   void advance_inflow(double dt);
+  // Particles that crossed the inlet plane (inlet -> fluid) and the outlet plane
+  // (fluid -> outlet), with the species they carried (sum of V C).
+  struct Crossings {
+    long entered = 0, left = 0;
+    double species_in = 0.0, species_out = 0.0;
+  };
   // Kind changes that keep indices: inlet -> fluid at x >= 0, fluid -> outlet at x >= L.
-  void update_kinds(ParticleStore& s) const;
+  Crossings update_kinds(ParticleStore& s) const;
   // At a re-sort: feed new inlet particles and mark particles to remove. keep[i] = 0 for
   // outlet particles past the buffer and for fluid particles that left through a wall or the
   // inlet (those are counted in `lost`).

@@ -168,7 +168,11 @@ bool SphSolver::step_impl(double dt) {
   {
     ScopedPhase timer(timers_, Phase::boundaries);
     scene_.advance_inflow(dt);
-    scene_.update_kinds(store_);
+    const auto crossed = scene_.update_kinds(store_);
+    crossings_.entered += crossed.entered;
+    crossings_.left += crossed.left;
+    crossings_.species_in += crossed.species_in;
+    crossings_.species_out += crossed.species_out;
   }
   if (!check_state(dt)) return false;
   t_ += dt;
@@ -195,17 +199,20 @@ bool SphSolver::check_state(double dt) {
   ParticleStore& s = store_;
   const std::size_t n = s.size();
   int bad = 0;
-  double vmax2 = 0.0, drho_max = 0.0;
+  double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0;
   const double rho0 = case_.fluid.rho0;
-#pragma omp parallel for schedule(static) reduction(max : vmax2, drho_max) reduction(+ : bad)
+#pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max) reduction(+ : bad)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] == kWall) continue;
-    const double tx = s.vx[i] + s.sx[i], ty = s.vy[i] + s.sy[i];
-    const double v2 = tx * tx + ty * ty;
-    const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(v2) &&
+    const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
+    const bool shifts = s.kind[i] == kFluid;  // sx, sy are only defined for fluid particles
+    const double tx = s.vx[i] + (shifts ? s.sx[i] : 0.0), ty = s.vy[i] + (shifts ? s.sy[i] : 0.0);
+    const double t2 = tx * tx + ty * ty;  // transport velocity (how far particles move)
+    const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&
                         std::isfinite(s.rho[i]) && std::isfinite(s.c[i]);
     bad += finite ? 0 : 1;
     vmax2 = std::max(vmax2, finite ? v2 : 0.0);
+    tmax2 = std::max(tmax2, finite ? t2 : 0.0);
     drho_max = std::max(drho_max, finite ? std::fabs(s.rho[i] / rho0 - 1.0) : 0.0);
   }
   const double vmax = std::sqrt(vmax2);
@@ -237,7 +244,7 @@ bool SphSolver::check_state(double dt) {
     s.c = s.c0;
     return false;
   }
-  moved_ += vmax * dt;
+  moved_ += std::sqrt(tmax2) * dt;
   return true;
 }
 

@@ -33,6 +33,8 @@ class SphSolver {
   PhaseTimers& timers() { return timers_; }
   const std::string& failure() const { return failure_; }
   long lost_particles() const { return lost_; }
+  // Particles that crossed the inlet and outlet planes since the start.
+  const ChannelScene::Crossings& boundary_crossings() const { return crossings_; }
   std::size_t fluid_count() const;
   double mean_neighbours() const { return list_.mean_neighbours(); }
   double particle_steps() const { return particle_steps_; }
@@ -65,6 +67,7 @@ class SphSolver {
   double t_ = 0.0;
   long steps_ = 0;
   long lost_ = 0;
+  ChannelScene::Crossings crossings_;
   double particle_steps_ = 0.0;
   std::string failure_;
   std::vector<std::uint32_t> order_, outside_;

@@ -1,0 +1,116 @@
+// The WCSPH flow in the channel: Poiseuille profile kept, mass bookkeeping, robustness.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "adrsph/simulation.hpp"
+#include "integrator/sph_solver.hpp"
+#include "sph_test_cases.hpp"
+
+namespace adrsph {
+namespace {
+
+constexpr auto kFluid = static_cast<std::uint8_t>(Kind::fluid);
+
+// L2 error of the fluid velocity against u(y) = u_max (1 - (y/R)^2), relative to the L2 norm
+// of the profile.
+double poiseuille_l2_error(const SphSolver& s, const Case& c) {
+  const auto& p = s.particles();
+  double err = 0, norm = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] != kFluid) continue;
+    const double eta = p.y[i] / c.geometry.half_width;
+    const double u = c.u_max() * (1 - eta * eta);
+    err += (p.vx[i] - u) * (p.vx[i] - u) + p.vy[i] * p.vy[i];
+    norm += u * u;
+  }
+  return std::sqrt(err / norm);
+}
+
+TEST(Flow, ModernSchemeKeepsPoiseuilleProfile) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  SphSolver solver(c);
+  const double dt = solver.dt_limits().chosen;
+  while (solver.time() < 0.1) ASSERT_TRUE(solver.step(dt)) << solver.failure();
+  const double err = poiseuille_l2_error(solver, c);
+  std::printf("modern scheme, t = %.3f s: L2 velocity error %.3f%%\n", solver.time(), 100 * err);
+  EXPECT_LT(err, 0.02);
+}
+
+TEST(Flow, ConventionalSchemeKeepsPoiseuilleProfile) {
+  Case c = testing::short_channel(Scheme::conventional, Flow::wcsph, 20.0);
+  SphSolver solver(c);
+  const double dt = solver.dt_limits().chosen;
+  while (solver.time() < 0.1) ASSERT_TRUE(solver.step(dt)) << solver.failure();
+  const double err = poiseuille_l2_error(solver, c);
+  std::printf("conventional scheme, t = %.3f s: L2 velocity error %.3f%%\n", solver.time(), 100 * err);
+  EXPECT_LT(err, 0.05);
+}
+
+TEST(Flow, ParticleMassIsConservedExactly) {
+  // Every particle carries the same mass for ever; fluid mass changes only by particles
+  // crossing the inlet and outlet planes: N_fluid(t) = N_fluid(0) + in - out.
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  SphSolver solver(c);
+  const double m0 = solver.particles().mass;
+  const long n0 = static_cast<long>(solver.fluid_count());
+  const double dt = solver.dt_limits().chosen;
+  while (solver.time() < 0.05) ASSERT_TRUE(solver.step(dt)) << solver.failure();
+  EXPECT_EQ(solver.particles().mass, m0);
+  const auto& flux = solver.boundary_crossings();
+  EXPECT_GT(flux.entered, 0);
+  EXPECT_GT(flux.left, 0);
+  EXPECT_EQ(static_cast<long>(solver.fluid_count()), n0 + flux.entered - flux.left);
+  EXPECT_EQ(solver.lost_particles(), 0);
+}
+
+class LastFrame : public RunObserver {
+ public:
+  void on_fields(const FieldFrame& f) override {
+    calls++;
+    all_finite = true;
+    for (double v : f.vx) all_finite = all_finite && std::isfinite(v);
+    for (double v : f.c) all_finite = all_finite && std::isfinite(v);
+  }
+  int calls = 0;
+  bool all_finite = false;
+};
+
+TEST(Robustness, StepAboveStableLimitIsCaught) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  c.time.dt = 20 * 0.25 * c.h() / (c.c0() + c.u_max());  // 20x the acoustic limit
+  c.time.t_end = 0.5;
+  LastFrame obs;
+  const RunResult r = run_simulation(c, obs);
+  EXPECT_EQ(r.status, "failed");
+  EXPECT_NE(r.message.find("time.cfl"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("time.dt"), std::string::npos) << r.message;
+  EXPECT_LT(r.t_reached, c.time.t_end);
+  EXPECT_GE(obs.calls, 1);
+  EXPECT_TRUE(obs.all_finite) << "the last good state must be written, not the blown-up one";
+}
+
+TEST(Robustness, JitteredLatticeStaysStableWithShifting) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  SphSolver solver(c);
+  auto& p = solver.particles();
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> jitter(-0.2 * c.particles.dx, 0.2 * c.particles.dx);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] != kFluid) continue;
+    p.x[i] += jitter(rng);
+    p.y[i] = std::clamp(p.y[i] + jitter(rng), -c.geometry.half_width + 0.05,
+                        c.geometry.half_width - 0.05);
+  }
+  solver.rebuild();
+  const double dt = solver.dt_limits().chosen;
+  while (solver.time() < 0.1) ASSERT_TRUE(solver.step(dt)) << solver.failure();
+  const double err = poiseuille_l2_error(solver, c);
+  std::printf("jittered start, modern, t = %.3f s: L2 velocity error %.3f%%\n", solver.time(), 100 * err);
+  EXPECT_LT(err, 0.10);
+  EXPECT_EQ(solver.lost_particles(), 0);
+}
+
+}  // namespace
+}  // namespace adrsph

@@ -1,0 +1,75 @@
+// Species transport on the particle lattice: reaction and diffusion against closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "integrator/sph_solver.hpp"
+#include "sph_test_cases.hpp"
+
+namespace adrsph {
+namespace {
+
+TEST(Species, PureReactionDecaysExponentially) {
+  // Prescribed flow at (almost) rest, no diffusion: every fluid particle must follow
+  // C(t) = C0 exp(-k t) (the reaction is integrated exactly, spec section 6).
+  Case c = testing::short_channel(Scheme::modern, Flow::prescribed);
+  c.fluid.u_bulk = 1e-9;
+  c.species.D = 0.0;
+  c.time.dt = 0.01;
+  SphSolver solver(c);
+  for (int s = 0; s < 100; ++s) ASSERT_TRUE(solver.step(c.time.dt)) << solver.failure();
+  const auto& p = solver.particles();
+  const double expected = c.species.c_init * std::exp(-c.species.k * solver.time());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.kind[i] == static_cast<std::uint8_t>(Kind::fluid))
+      worst = std::max(worst, std::fabs(p.c[i] / expected - 1.0));
+  EXPECT_LT(worst, 1e-6);
+}
+
+// Max |C - C_exact| / peak for a Gaussian blob in the middle of a still channel, which
+// spreads as C = A s0^2 / s^2 exp(-r^2 / (2 s^2)),  s^2 = s0^2 + 2 D t.
+double gaussian_diffusion_error(double dx) {
+  Case c = testing::short_channel(Scheme::modern, Flow::prescribed, 20.0);
+  c.fluid.u_bulk = 1e-9;
+  c.species.D = 1.0;
+  c.species.k = 0.0;
+  c.particles.dx = dx;
+  SphSolver solver(c);
+  auto& p = solver.particles();
+  const double s0 = 1.0, amp = 1.0, xc = 10.0, yc = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] == static_cast<std::uint8_t>(Kind::wall)) continue;
+    const double r2 = (p.x[i] - xc) * (p.x[i] - xc) + (p.y[i] - yc) * (p.y[i] - yc);
+    p.c[i] = amp * std::exp(-r2 / (2 * s0 * s0));
+  }
+  const double dt = solver.dt_limits().chosen;
+  const double t_end = 0.5;
+  while (solver.time() < t_end - 1e-12) {
+    if (!solver.step(std::min(dt, t_end - solver.time()))) return 1e9;
+  }
+  const double s2 = s0 * s0 + 2 * c.species.D * solver.time();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
+    const double r2 = (p.x[i] - xc) * (p.x[i] - xc) + (p.y[i] - yc) * (p.y[i] - yc);
+    const double exact = amp * s0 * s0 / s2 * std::exp(-r2 / (2 * s2));
+    worst = std::max(worst, std::fabs(p.c[i] - exact));
+  }
+  return worst / (amp * s0 * s0 / s2);
+}
+
+TEST(Species, GaussianDiffusionMatchesAnalyticSolution) {
+  const double coarse = gaussian_diffusion_error(0.25);
+  const double fine = gaussian_diffusion_error(0.125);
+  std::printf("Gaussian diffusion, max error / peak: dx = 0.25: %.3f%%, dx = 0.125: %.3f%%\n",
+              100 * coarse, 100 * fine);
+  // Stated tolerance: 1.5% of the peak at s0 = 4 dx, and the error must fall on refinement.
+  // Measured: 1.05% and 0.49%, about first order: eta = 0.1 h scales with h, so the eta^2
+  // regularisation of eqs. (7)/(12) biases the Laplacian by a fixed ~0.6% at fixed h/dx.
+  EXPECT_LT(coarse, 0.015);
+  EXPECT_LT(fine, 0.6 * coarse);
+}
+
+}  // namespace
+}  // namespace adrsph
