@@ -32,5 +32,7 @@ else
   echo "setup: all Debian packages present"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DADRSPH_WERROR="${ADRSPH_WERROR:-OFF}"
+# ADRSPH_WERROR is passed only when set, so that a build dir keeps its setting (no full rebuild
+# when the first README command follows the second).
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${ADRSPH_WERROR:+-DADRSPH_WERROR="$ADRSPH_WERROR"}
 cmake --build build -j2
