@@ -110,6 +110,24 @@ TEST(CliRun, BadOptionExits2) {
   EXPECT_EQ(test::run_adrsph("run", dir.path()).exit_code, 2);
 }
 
+TEST(CliRun, NumericalFailureWritesOutputsAndExits3) {
+  test::TempDir dir;
+  make_old_output(dir / "out");
+  // A fixed time step 200x above the acoustic limit blows the flow up within a few steps.
+  const auto r = test::run_adrsph("run " + lfr() +
+                                      " --set particles.dx=0.5 --set time.dt=0.01"
+                                      " --set time.max_steps=50 --out out",
+                                  dir.path());
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("failed"));
+  const std::string json = test::read_file(dir / "out" / "run.json");
+  EXPECT_THAT(json, HasSubstr("\"status\": \"failed\""));
+  EXPECT_TRUE(fs::exists(dir / "out" / "fields.h5"));  // the last good state
+  EXPECT_FALSE(fs::exists(dir / "out" / "probes.csv") &&
+               test::read_file(dir / "out" / "probes.csv") == "old\n");
+  expect_no_staging(dir.path());
+}
+
 TEST(CliRun, HelpDescribesEveryOption) {
   test::TempDir dir;
   const auto r = test::run_adrsph("run --help", dir.path());

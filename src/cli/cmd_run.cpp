@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -112,7 +113,9 @@ int run(const RunOptions& o) {
   }
   print_summary(std::cout, c, r, info);
   if (r.status != "ok") {
-    error("the run failed at t = " + std::to_string(r.t_reached) + " s: " + r.message +
+    char t[32];
+    std::snprintf(t, sizeof t, "%g", r.t_reached);
+    error(std::string("the run failed at t = ") + t + " s: " + r.message +
           " (outputs of the last good state are in " + info.out_dir.string() + ")");
     return kExitRunFailed;
   }
