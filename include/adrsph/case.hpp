@@ -64,9 +64,10 @@ struct Case {
     double dt = 0.0;                 // `time.dt` [s], fixed step; 0 = from the limits
     double check_interval = 0.05;    // `time.check_interval` [s], probes + guards + steady test
     bool stop_when_steady = true;    // `time.stop_when_steady`
-    double steady_tol = 1e-4;        // `time.steady_tol`, max probe change per check / c_in
+    double steady_tol = 1e-3;        // `time.steady_tol`, max change of window-mean probes / c_in
     double steady_window = 0.5;      // `time.steady_window` [s], must hold this long
     double average_window = 0.0;     // `time.average_window` [s], probe time average at the end
+    bool warm_start = false;         // `time.warm_start`, start C from the prescribed-flow steady state
   } time;
 
   struct Output {

@@ -67,6 +67,12 @@ struct RunResult {
   StationTable stations;
   double average_window = 0.0;  // probes averaged over [t_reached - window, t_reached]; 0: instantaneous
   std::string probe_interpolation;  // how probes were computed (text for run.json)
+  // time.warm_start: the prescribed-flow run that gave the initial C field.
+  bool warm_started = false;
+  double warm_start_t = 0.0;       // simulated time of the prescribed run
+  long warm_start_steps = 0;
+  double warm_start_wall_s = 0.0;  // included in wall_s
+  bool warm_start_steady = false;
 };
 
 // Runs the case. Numerical failures (NaN, blow-up, lost particles) do not throw: they end

@@ -35,7 +35,8 @@ double SteadyStateDetector::update(double t, const ProbeTable& p) {
   const auto earlier = window_mean(t - 2.0 * window_ - eps, t - window_ - eps);
   if (recent.empty() || earlier.empty()) return std::numeric_limits<double>::infinity();
   double change = 0.0;
-  for (std::size_t i = 0; i < recent.size(); ++i) change = std::max(change, std::fabs(recent[i] - earlier[i]));
+  for (std::size_t i = 0; i < recent.size(); ++i)
+    change = std::max(change, std::fabs(recent[i] - earlier[i]));
   change /= scale_;
   if (change < tol_ && !steady_) {
     steady_ = true;

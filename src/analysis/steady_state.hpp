@@ -1,8 +1,10 @@
 // Steady state: the probe profiles stop changing. Single snapshots carry sampling noise
 // (rows of particles slide past the probe points), so the test compares the MEAN probe
-// profiles over two consecutive windows: the run is steady once the largest change of any
-// probe value between the window [t - w, t] and [t - 2w, t - w], relative to the inlet
-// concentration, is below the tolerance.
+// profiles over two consecutive windows [t - 2w, t - w] and [t - w, t], sampled at jittered
+// instants (see simulation.cpp). The run is steady when the largest change of any probe's
+// window mean, relative to the inlet concentration, is below the tolerance. The particle
+// noise of the window means sets a floor: about 1e-4..1e-3 here, so tolerances below
+// 1e-4 may never be met.
 #pragma once
 
 #include <algorithm>
@@ -25,7 +27,7 @@ class SteadyStateDetector {
   double t_steady() const { return t_steady_; }
 
  private:
-  // Sum of the profiles of the samples with time in (t0, t1].
+  // Mean of the samples with time in (t0, t1], per probe value.
   std::vector<double> window_mean(double t0, double t1) const;
 
   double tol_, window_, scale_;

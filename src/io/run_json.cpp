@@ -55,6 +55,12 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["message"] = r.message;
   j["probe_interpolation"] = r.probe_interpolation;
   j["average_window"] = r.average_window;
+  j["warm_start"] = r.warm_started ? Json{{"flow", "prescribed"},
+                                          {"t_reached", number(r.warm_start_t)},
+                                          {"steps", r.warm_start_steps},
+                                          {"steady", r.warm_start_steady},
+                                          {"wall_seconds", number(r.warm_start_wall_s)}}
+                                   : Json(nullptr);
   Json phases = Json::object();
   for (const auto& [name, s] : r.phase_seconds) phases[name] = number(s);
   j["phase_seconds"] = phases;
