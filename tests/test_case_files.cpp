@@ -123,6 +123,7 @@ stop_when_steady = false
 steady_tol = 1e-3
 steady_window = 0.2
 average_window = 0.5
+warm_start = true
 [output]
 field_times = [0.5, 1, 2]
 progress = false
@@ -163,6 +164,7 @@ progress = false
   EXPECT_DOUBLE_EQ(c.time.steady_tol, 1e-3);
   EXPECT_DOUBLE_EQ(c.time.steady_window, 0.2);
   EXPECT_DOUBLE_EQ(c.time.average_window, 0.5);
+  EXPECT_TRUE(c.time.warm_start);
   EXPECT_EQ(c.output.field_times, (std::vector<double>{0.5, 1.0, 2.0}));
   EXPECT_FALSE(c.output.progress);
 }

@@ -102,6 +102,22 @@ TEST(RunJson, EveryKey) {
   EXPECT_DOUBLE_EQ(j["stations"]["50"].get<double>(), 1.04);
   EXPECT_DOUBLE_EQ(j["stations"]["100"].get<double>(), 0.63);
   EXPECT_EQ(j["field_frames"], 3);
+  EXPECT_TRUE(j["warm_start"].is_null());
+}
+
+TEST(RunJson, WarmStart) {
+  RunResult r = sample_result();
+  r.warm_started = true;
+  r.warm_start_t = 3.5;
+  r.warm_start_steps = 5600;
+  r.warm_start_steady = true;
+  r.warm_start_wall_s = 20.0;
+  const auto j = nlohmann::json::parse(run_json_text(sample_case(), r, {}));
+  EXPECT_EQ(j["warm_start"]["flow"], "prescribed");
+  EXPECT_DOUBLE_EQ(j["warm_start"]["t_reached"].get<double>(), 3.5);
+  EXPECT_EQ(j["warm_start"]["steps"], 5600);
+  EXPECT_EQ(j["warm_start"]["steady"], true);
+  EXPECT_DOUBLE_EQ(j["warm_start"]["wall_seconds"].get<double>(), 20.0);
 }
 
 TEST(RunJson, NotSteadyAndFailed) {
