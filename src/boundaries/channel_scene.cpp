@@ -60,12 +60,12 @@ ChannelScene::Crossings ChannelScene::update_kinds(ParticleStore& s) const {
     if (k == Kind::inlet && s.x[i] >= 0.0) {
       s.kind[i] = static_cast<std::uint8_t>(Kind::fluid);
       ++entered;
-      species_in += s.vol[i] * s.c[i];
+      species_in += s.mass / s.rho[i] * s.c[i];
     }
     if (k == Kind::fluid && s.x[i] >= length) {
       s.kind[i] = static_cast<std::uint8_t>(Kind::outlet);
       ++left;
-      species_out += s.vol[i] * s.c[i];
+      species_out += s.mass / s.rho[i] * s.c[i];
     }
   }
   return {entered, left, species_in, species_out};

@@ -56,6 +56,13 @@ SphSolver::SphSolver(const Case& c) : case_(c), scene_(c), kernel_(c.h()) {
   rebuild();
 }
 
+double SphSolver::species_inventory() const {
+  double total = 0.0;
+  for (std::size_t i = 0; i < store_.size(); ++i)
+    if (store_.kind[i] == kFluid) total += phys_.mass / store_.rho[i] * store_.c[i];
+  return total;
+}
+
 std::size_t SphSolver::fluid_count() const {
   std::size_t n = 0;
   for (std::size_t i = 0; i < store_.size(); ++i) n += store_.kind[i] == kFluid;
@@ -154,6 +161,8 @@ bool SphSolver::step_impl(double dt) {
   evaluate_impl<S, Ale>();
   advance<S>(0.5 * dt);
   evaluate_impl<S, Ale>();
+  if (track_balance_)
+    ledger_.buffer_exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
   advance<S>(dt);
   {
     ScopedPhase timer(timers_, Phase::integration);
@@ -161,9 +170,15 @@ bool SphSolver::step_impl(double dt) {
     // operators because k is uniform (spec section 6).
     const double decay = species_decay(case_.species.k, dt);
     const std::size_t n = store_.size();
-#pragma omp parallel for simd schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
-      if (store_.kind[i] == kFluid) store_.c[i] *= decay;
+    const double mass = phys_.mass;
+    double consumed = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : consumed)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (store_.kind[i] != kFluid) continue;
+      consumed += mass / store_.rho[i] * store_.c[i] * (1.0 - decay);
+      store_.c[i] *= decay;
+    }
+    ledger_.reaction += consumed;
   }
   {
     ScopedPhase timer(timers_, Phase::boundaries);
@@ -173,6 +188,8 @@ bool SphSolver::step_impl(double dt) {
     crossings_.left += crossed.left;
     crossings_.species_in += crossed.species_in;
     crossings_.species_out += crossed.species_out;
+    ledger_.inflow += crossed.species_in;
+    ledger_.outflow += crossed.species_out;
   }
   if (!check_state(dt)) return false;
   t_ += dt;

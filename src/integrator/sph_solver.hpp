@@ -17,6 +17,14 @@
 
 namespace adrsph {
 
+// Species bookkeeping over the run (moles per unit depth, V C summed), for the balance
+// inflow - outflow + diffusive exchange - reaction = change of the fluid inventory.
+struct SpeciesLedger {
+  double inflow = 0.0, outflow = 0.0;  // carried by particles crossing x = 0 and x = L
+  double buffer_exchange = 0.0;        // diffused from the inflow/outflow buffers (if tracked)
+  double reaction = 0.0;               // consumed by the reaction
+};
+
 class SphSolver {
  public:
   explicit SphSolver(const Case& c);
@@ -35,6 +43,11 @@ class SphSolver {
   long lost_particles() const { return lost_; }
   // Particles that crossed the inlet and outlet planes since the start.
   const ChannelScene::Crossings& boundary_crossings() const { return crossings_; }
+  // Track the diffusive exchange with the buffers (one extra neighbour pass per step).
+  void track_species_balance(bool on) { track_balance_ = on; }
+  const SpeciesLedger& species_ledger() const { return ledger_; }
+  // Moles of species carried by the fluid particles: sum V C with V = m / rho.
+  double species_inventory() const;
   std::size_t fluid_count() const;
   double mean_neighbours() const { return list_.mean_neighbours(); }
   double particle_steps() const { return particle_steps_; }
@@ -68,6 +81,8 @@ class SphSolver {
   long steps_ = 0;
   long lost_ = 0;
   ChannelScene::Crossings crossings_;
+  SpeciesLedger ledger_;
+  bool track_balance_ = false;
   double particle_steps_ = 0.0;
   std::string failure_;
   std::vector<std::uint32_t> order_, outside_;

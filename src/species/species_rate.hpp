@@ -24,4 +24,12 @@ inline double species_dilatation_pair(double vol_j, double u_dot_gradw) {
 // First-order reaction over a step, exact: C <- C exp(-k dt).
 inline double species_decay(double k, double dt) { return std::exp(-k * dt); }
 
+// Moles exchanged with the inflow/outflow buffers by diffusion (the only species flux
+// across the open boundaries besides the particles that cross them), summed over the fluid
+// particles: sum_i V_i sum_{j in buffers} diffusion pair term. Diagnostic for the species
+// balance; not part of the stepping.
+struct ParticleStore;
+struct PassContext;
+double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx);
+
 }  // namespace adrsph
