@@ -1,9 +1,143 @@
-// Placeholder: replaced by the compare command.
+// `adrsph compare RUN_DIR REF_DIR [--out FILE]`: the paper's metrics (spec section 4, issue
+// 4). Relative error along the three probe lines (CSV + PNG, figures 3-5) and of the section
+// averages at x = 25, 50, 100 beside the paper's table 3 (Markdown, also printed).
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "adrsph/probes.hpp"
+#include "analysis/compare.hpp"
 #include "cli/commands.hpp"
 
+#ifndef ADRSPH_TOOLS_DIR
+#define ADRSPH_TOOLS_DIR "tools"
+#endif
+
 namespace adrsph::cli {
-Command register_compare(CLI::App& app) {
-  auto* sub = app.add_subcommand("compare", "(not yet implemented)");
-  return {sub, [] { return kExitBadInput; }};
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kExitIoError = 1;  // as `run`: I/O or internal error
+
+struct CompareOptions {
+  std::string run_dir, ref_dir, out;
+  bool plot = true;
+};
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return q + "'";
 }
+
+// A Python 3 with matplotlib: $ADRSPH_PYTHON, else python3 on PATH, else /usr/bin/python3
+// (Debian's, where python3-matplotlib installs). Empty if none.
+std::string find_plotting_python() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("ADRSPH_PYTHON")) candidates.emplace_back(env);
+  candidates.emplace_back("python3");
+  candidates.emplace_back("/usr/bin/python3");
+  for (const std::string& py : candidates) {
+    const std::string probe = shell_quote(py) + " -c 'import matplotlib, numpy' >/dev/null 2>&1";
+    if (std::system(probe.c_str()) == 0) return py;
+  }
+  return {};
+}
+
+void plot_errors(const fs::path& csv, const fs::path& png, const std::string& title) {
+  const fs::path script = fs::path(ADRSPH_TOOLS_DIR) / "plot_errors.py";
+  if (!fs::exists(script)) {
+    std::printf("plot: %s not found; no PNG\n", script.c_str());
+    return;
+  }
+  const std::string py = find_plotting_python();
+  if (py.empty()) {
+    std::printf("plot: no python3 with matplotlib found (set ADRSPH_PYTHON); no PNG\n");
+    return;
+  }
+  const std::string cmd = shell_quote(py) + " " + shell_quote(script.string()) + " " +
+                          shell_quote(csv.string()) + " --out " + shell_quote(png.string()) +
+                          " --title " + shell_quote(title);
+  std::cout.flush();
+  std::fflush(stdout);
+  if (std::system(cmd.c_str()) != 0) std::printf("plot: %s failed; no PNG\n", script.c_str());
+}
+
+int run_compare(const CompareOptions& o) {
+  const fs::path run_dir = o.run_dir, ref_dir = o.ref_dir;
+  ProbeTable run_probes, ref_probes;
+  StationTable run_stations, ref_stations;
+  try {
+    run_probes = read_probes_csv(run_dir / "probes.csv");
+    run_stations = read_stations_csv(run_dir / "stations.csv");
+    ref_probes = read_probes_csv(ref_dir / "probes.csv");
+    ref_stations = read_stations_csv(ref_dir / "stations.csv");
+  } catch (const std::exception& e) {
+    std::cerr << "adrsph compare: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  analysis::RunInfo info = analysis::read_run_info(run_dir / "run.json");
+  if (!info.pe) info.pe = analysis::read_run_info(ref_dir / "reference.json").pe;
+
+  analysis::LineErrors lines;
+  std::vector<analysis::StationError> stations;
+  try {
+    lines = analysis::line_errors(run_probes, ref_probes);
+    stations = analysis::station_errors(run_stations, ref_stations, info.pe);
+  } catch (const std::exception& e) {
+    std::cerr << "adrsph compare: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const std::string run_name =
+      run_dir.filename().empty() ? run_dir.string() : run_dir.filename().string();
+  const std::string md = analysis::compare_markdown(run_name, ref_dir.string(), info, stations,
+                                                    analysis::summarise(lines));
+  std::cout << md;
+
+  const fs::path md_file = o.out.empty() ? run_dir / "compare.md" : fs::path(o.out);
+  fs::path csv_file = md_file, png_file = md_file;
+  csv_file.replace_extension(".csv");
+  png_file.replace_extension(".png");
+  try {
+    if (md_file.has_parent_path()) fs::create_directories(md_file.parent_path());
+    std::ofstream out(md_file, std::ios::binary);
+    out << md;
+    if (!out) throw std::runtime_error(md_file.string() + ": write failed");
+    analysis::write_line_errors_csv(csv_file, lines);
+  } catch (const std::exception& e) {
+    std::cerr << "adrsph compare: " << e.what() << "\n";
+    return kExitIoError;
+  }
+  std::printf("\nwrote %s and %s\n", md_file.c_str(), csv_file.c_str());
+  if (o.plot)
+    plot_errors(csv_file, png_file, "relative error: " + run_name + " against " + o.ref_dir);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command register_compare(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "compare",
+      "Relative error of a run against a reference (spec section 4): along the probe lines "
+      "y = 0, +2.5, -2.5 and of the section average (the paper's figures 3-5), and of the "
+      "section averages at x = 25, 50, 100 beside the paper's table 3 (row chosen by Pe and "
+      "scheme from RUN_DIR/run.json). Reads probes.csv and stations.csv of both. Writes FILE "
+      "(Markdown, default RUN_DIR/compare.md), FILE with .csv (x_mm,err_y0,err_y+2.5,"
+      "err_y-2.5,err_mean) and FILE with .png (tools/plot_errors.py, when a python3 with "
+      "matplotlib is found; $ADRSPH_PYTHON overrides).\n"
+      "Exit codes: 0 ok, 1 I/O error, 2 bad input (missing or malformed CSV).");
+  auto o = std::make_shared<CompareOptions>();
+  sub->add_option("run_dir", o->run_dir, "Run directory (adrsph run --out)")->required();
+  sub->add_option("ref_dir", o->ref_dir, "Reference directory (adrsph reference --out)")
+      ->required();
+  sub->add_option("--out", o->out, "Markdown report (default RUN_DIR/compare.md)");
+  sub->add_flag("!--no-plot", o->plot, "Do not draw the PNG");
+  return {sub, [o] { return run_compare(*o); }};
+}
+
 }  // namespace adrsph::cli
