@@ -109,6 +109,32 @@ TEST(Operators, ViscousOperatorRecoversNuLaplacian) {
   EXPECT_GT(std::fabs(4.0 * ax - 2.0 * nu), 0.5 * 2.0 * nu);
 }
 
+TEST(Operators, DiffusionExplicitStabilityLimitOnLattice) {
+  // Fourier symbol of the discrete Laplacian on the lattice: for C = exp(i k.x),
+  // -lap_h C / C = sum_j 2 V (1 - cos(k.r_j)) (-lap_weight_j). The explicit midpoint (and
+  // Euler) step is stable for dt <= 2 / (D lambda_max): the bound behind the default
+  // time.diffusion_number = 0.25 (docs/physics.md).
+  const QuinticKernel w(kDx);
+  const double vol = kDx * kDx, eta2 = 0.01 * kDx * kDx;
+  double lambda_max = 0.0;
+  for (int a = 0; a <= 20; ++a) {
+    for (int b = 0; b <= 20; ++b) {
+      const double kx = a * std::numbers::pi / (20 * kDx), ky = b * std::numbers::pi / (20 * kDx);
+      double lambda = 0.0;
+      for_each_lattice_neighbour(0, 0, [&](double x, double y) {
+        const double r2 = x * x + y * y;
+        const double lap_weight = w.gradient_factor(std::sqrt(r2)) * r2 / (r2 + eta2);
+        lambda += 2.0 * vol * (1.0 - std::cos(kx * x + ky * y)) * (-lap_weight);
+      });
+      lambda_max = std::max(lambda_max, lambda);
+    }
+  }
+  const double limit = 2.0 / (lambda_max * kDx * kDx);  // in units of dx^2 / D
+  std::printf("explicit diffusion limit on the lattice: D dt / dx^2 <= %.4f\n", limit);
+  EXPECT_GT(limit, 0.5);  // the default 0.25 keeps a margin of 2
+  EXPECT_LT(limit, 0.6);
+}
+
 TEST(Operators, PressureGradientOfLinearPressure) {
   // eq. (6): -(1/rho) sum V_j (p_i + p_j) grad W = -(1/rho) grad p on a full lattice.
   const QuinticKernel w(kDx);

@@ -60,7 +60,7 @@ struct Case {
     long max_steps = 0;              // `time.max_steps`, 0 = no limit
     double cfl = 0.25;               // `time.cfl`, acoustic (or advective) Courant number
     double viscous_number = 0.125;   // `time.viscous_number`, dt <= this * h^2 / nu
-    double diffusion_number = 0.125; // `time.diffusion_number`, dt <= this * h^2 / D
+    double diffusion_number = 0.25;  // `time.diffusion_number`, dt <= this * h^2 / D
     double dt = 0.0;                 // `time.dt` [s], fixed step; 0 = from the limits
     double check_interval = 0.05;    // `time.check_interval` [s], probes + guards + steady test
     bool stop_when_steady = true;    // `time.stop_when_steady`

@@ -216,9 +216,12 @@ bool SphSolver::check_state(double dt) {
   ParticleStore& s = store_;
   const std::size_t n = s.size();
   int bad = 0;
-  double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0;
+  double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0, c_dev = 0.0;
+  // Diffusion and reaction keep C within [0, c_max] (maximum principle); the dilatation term
+  // may move it slightly. A species step beyond its stability limit leaves this band fast.
+  const double c_max = std::max(case_.species.c_in, case_.species.c_init);
   const double rho0 = case_.fluid.rho0;
-#pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max) reduction(+ : bad)
+#pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max, c_dev) reduction(+ : bad)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] == kWall) continue;
     const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
@@ -231,6 +234,7 @@ bool SphSolver::check_state(double dt) {
     vmax2 = std::max(vmax2, finite ? v2 : 0.0);
     tmax2 = std::max(tmax2, finite ? t2 : 0.0);
     drho_max = std::max(drho_max, finite ? std::fabs(s.rho[i] / rho0 - 1.0) : 0.0);
+    if (finite) c_dev = std::max(c_dev, std::max(s.c[i] - c_max, -s.c[i]));
   }
   const double vmax = std::sqrt(vmax2);
   std::ostringstream m;
@@ -244,6 +248,11 @@ bool SphSolver::check_state(double dt) {
   } else if (case_.flow == Flow::wcsph && drho_max > 0.2) {
     m << "density deviates by " << 100 * drho_max << "% from rho0 at t = " << t_ + dt
       << " s, step " << steps_ + 1 << ": the flow blew up. ";
+  }
+  else if (c_dev > 0.5 * c_max) {
+    m << "concentration left the physical band [0, " << c_max << "] by " << c_dev
+      << " mol/m^3 at t = " << t_ + dt << " s, step " << steps_ + 1
+      << ": the species step is unstable. ";
   }
   if (!m.str().empty()) {
     m << "The time step is above the stable limit for this case: lower time.cfl (now "
