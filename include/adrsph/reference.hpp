@@ -62,11 +62,12 @@ struct SolverOptions {
 };
 
 struct SolveReport {
-  std::string solver;  // e.g. "SparseLU(COLAMD) + van Leer deferred correction"
+  std::string solver;  // e.g. "SparseLU + van_leer deferred correction"
   double assembly_seconds = 0.0;
   double solve_seconds = 0.0;  // factorisation + all correction sweeps
   int corrections = 0;         // deferred correction iterations done
-  double last_change = 0.0;    // max |dC| / C_scale of the last iteration
+  double last_change = 0.0;    // max |dC| / C_scale of the last iteration (unrelaxed)
+  double relaxation = 1.0;     // final under-relaxation of the correction (halved on stalls)
   double residual = 0.0;       // ||A(C) C - b||_2 / ||b||_2 of the full (limited) scheme
   bool converged = false;
 };
@@ -91,6 +92,14 @@ StationTable station_table(const Solution& s, const Problem& p);
 // DIR/reference.h5: datasets x (nx), y (ny), C (ny x nx, row j = y_j); attributes
 // D, k, u_bulk, nx, ny (plus L, R, c_in).
 void write_reference_h5(const std::filesystem::path& file, const Solution& s, const Problem& p);
+
+// reference.h5 read back (tests, post-processing). Throws std::runtime_error naming the file.
+struct ReferenceField {
+  int nx = 0, ny = 0;
+  std::vector<double> x, y, c;  // c[j * nx + i] = C(x_i, y_j)
+  double D = 0.0, k = 0.0, u_bulk = 0.0, c_in = 0.0, length = 0.0, half_width = 0.0;
+};
+ReferenceField read_reference_h5(const std::filesystem::path& file);
 
 // DIR/reference.json: grid, D, k, c_in, u_bulk, Pe, solver, timings, residual, stations.
 void write_reference_json(const std::filesystem::path& file, const std::string& case_name,

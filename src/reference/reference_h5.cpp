@@ -47,7 +47,52 @@ void write_attribute(hid_t file, const char* name, hid_t file_type, hid_t mem_ty
     throw std::runtime_error(std::string("HDF5: write attribute ") + name + " failed");
 }
 
+std::vector<double> read_dataset(hid_t file, const std::string& where, const char* name,
+                                 std::size_t expected) {
+  Handle set(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose, where + ": open dataset " + name);
+  Handle space(H5Dget_space(set), H5Sclose, where + ": dataspace of " + name);
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  if (n < 0 || static_cast<std::size_t>(n) != expected)
+    throw std::runtime_error(where + ": dataset " + name + " has " + std::to_string(n) +
+                             " values, expected " + std::to_string(expected));
+  std::vector<double> v(expected);
+  if (H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
+    throw std::runtime_error(where + ": read dataset " + name + " failed");
+  return v;
+}
+
+template <class T>
+T read_attribute(hid_t file, const std::string& where, const char* name, hid_t mem_type) {
+  Handle attr(H5Aopen(file, name, H5P_DEFAULT), H5Aclose, where + ": open attribute " + name);
+  T value{};
+  if (H5Aread(attr, mem_type, &value) < 0)
+    throw std::runtime_error(where + ": read attribute " + name + " failed");
+  return value;
+}
+
 }  // namespace
+
+ReferenceField read_reference_h5(const std::filesystem::path& path) {
+  const std::string where = path.string();
+  if (!std::filesystem::is_regular_file(path))
+    throw std::runtime_error(where + ": no such file");
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + where);
+  ReferenceField f;
+  f.nx = read_attribute<int>(file, where, "nx", H5T_NATIVE_INT);
+  f.ny = read_attribute<int>(file, where, "ny", H5T_NATIVE_INT);
+  if (f.nx < 1 || f.ny < 1) throw std::runtime_error(where + ": bad nx, ny attributes");
+  const hid_t d = H5T_NATIVE_DOUBLE;
+  f.D = read_attribute<double>(file, where, "D", d);
+  f.k = read_attribute<double>(file, where, "k", d);
+  f.u_bulk = read_attribute<double>(file, where, "u_bulk", d);
+  f.c_in = read_attribute<double>(file, where, "c_in", d);
+  f.length = read_attribute<double>(file, where, "length", d);
+  f.half_width = read_attribute<double>(file, where, "half_width", d);
+  f.x = read_dataset(file, where, "x", static_cast<std::size_t>(f.nx));
+  f.y = read_dataset(file, where, "y", static_cast<std::size_t>(f.ny));
+  f.c = read_dataset(file, where, "C", static_cast<std::size_t>(f.nx) * f.ny);
+  return f;
+}
 
 void write_reference_h5(const std::filesystem::path& path, const Solution& s, const Problem& p) {
   const Grid& g = s.grid;

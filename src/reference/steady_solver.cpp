@@ -6,6 +6,7 @@
 #include <Eigen/SparseLU>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -103,14 +104,27 @@ Solution solve_steady(const Problem& p, int nx, int ny, const SolverOptions& opt
   double scale = std::max(std::abs(p.c_in), c.cwiseAbs().maxCoeff());
   if (scale == 0.0) scale = 1.0;
   rep.converged = opt.limiter == Limiter::upwind;
+  // Under-relaxation, halved whenever the change has not improved for 10 iterations: the
+  // limiter's switches (minmod's kinks) can otherwise leave a limit cycle near 1e-10.
+  double relax = 1.0, best = std::numeric_limits<double>::infinity();
+  int since_best = 0;
   for (int it = 1; !rep.converged && it <= opt.max_corrections; ++it) {
     detail::advective_correction(p, g, u_cell, opt.limiter, c, corr);
-    Eigen::VectorXd next = solver->solve(sys.b - corr, c);
-    rep.last_change = (next - c).cwiseAbs().maxCoeff() / scale;
+    const Eigen::VectorXd next = solver->solve(sys.b - corr, c);
+    const double change = (next - c).cwiseAbs().maxCoeff() / scale;
+    c += relax * (next - c);
+    rep.last_change = change;
     rep.corrections = it;
-    c.swap(next);
-    rep.converged = rep.last_change < opt.tolerance;
+    rep.converged = change < opt.tolerance;
+    if (change < best) {
+      best = change;
+      since_best = 0;
+    } else if (++since_best >= 10 && relax > 0.1) {
+      relax *= 0.5;
+      since_best = 0;
+    }
   }
+  rep.relaxation = relax;
   rep.solve_seconds = seconds_since(t0);
 
   detail::advective_correction(p, g, u_cell, opt.limiter, c, corr);
