@@ -74,8 +74,7 @@ T read_attribute(hid_t file, const std::string& where, const char* name, hid_t m
 
 ReferenceField read_reference_h5(const std::filesystem::path& path) {
   const std::string where = path.string();
-  if (!std::filesystem::is_regular_file(path))
-    throw std::runtime_error(where + ": no such file");
+  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(where + ": no such file");
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + where);
   ReferenceField f;
   f.nx = read_attribute<int>(file, where, "nx", H5T_NATIVE_INT);
