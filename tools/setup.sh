@@ -12,6 +12,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev            # case files, command line
   nlohmann-json3-dev                          # run.json
   libgtest-dev libgmock-dev libbenchmark-dev  # tests, benchmarks
+  valgrind                                    # perf regression guard (perf/guard.sh)
   python3 python3-matplotlib python3-h5py     # tools/*.py (plots)
 )
 
