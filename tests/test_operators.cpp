@@ -99,7 +99,7 @@ TEST(Operators, ViscousOperatorRecoversNuLaplacian) {
   for_each_lattice_neighbour(x0, y0, [&](double x, double y) {
     const double dx = x0 - x, dy = y0 - y, r2 = dx * dx + dy * dy;
     const double lap_weight = w.gradient_factor(std::sqrt(r2)) * r2 / (r2 + eta2);
-    const double s = viscous_pair(mass, 4.0 * nu, rho, rho, lap_weight);
+    const double s = viscous_pair(mass, 4.0 * nu, 1.0 / (rho + rho), lap_weight);
     ax += s * (ux(x0, y0) - ux(x, y));
     ay += s * (uy(x0, y0) - uy(x, y));
   });

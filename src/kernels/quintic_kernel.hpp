@@ -30,14 +30,19 @@ struct QuinticKernel {
     return sigma * (t3_2 * t3_2 * t3 - 6.0 * t2_2 * t2_2 * t2 + 15.0 * t1_2 * t1_2 * t1);
   }
 
-  // (dW/dr) / r, so that grad_i W_ij = F(r_ij) * (r_i - r_j). Zero beyond the support and
-  // finite at r = 0 (dW/dr vanishes there).
-  double gradient_factor(double r) const {
+  // dW/dr (<= 0). The passes divide by r themselves, sharing one division between several
+  // factors (see interaction_pass.hpp).
+  double derivative(double r) const {
     const double q = r * inv_h;
     const double t3 = positive(3.0 - q), t2 = positive(2.0 - q), t1 = positive(1.0 - q);
     const double t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
-    const double dw_dq = -5.0 * t3_2 * t3_2 + 30.0 * t2_2 * t2_2 - 75.0 * t1_2 * t1_2;
-    return sigma * inv_h * dw_dq / (r + 1e-30);
+    return sigma * inv_h * (-5.0 * t3_2 * t3_2 + 30.0 * t2_2 * t2_2 - 75.0 * t1_2 * t1_2);
+  }
+
+  // (dW/dr) / r, so that grad_i W_ij = F(r_ij) * (r_i - r_j). Zero beyond the support and
+  // finite at r = 0 (dW/dr vanishes there).
+  double gradient_factor(double r) const {
+    return derivative(r) / (r + 1e-30);
   }
 };
 

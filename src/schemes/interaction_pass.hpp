@@ -44,15 +44,22 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       const std::uint32_t j = nb[k];
       const double dx = xi - x[j], dy = yi - y[j];
       const double r2 = dx * dx + dy * dy;
-      const double f = kernel.gradient_factor(std::sqrt(r2));
-      const double gwx = f * dx, gwy = f * dy;  // grad_i W_ij
-      const double lap_weight = f * r2 / (r2 + eta2);  // (r_ij . grad W_ij) / (r_ij^2 + eta^2)
+      const double r = std::sqrt(r2) + 1e-30;
+      // One division gives 1/r, 1/(r^2 + eta^2) and 1/(rho_i + rho_j): divisions and the
+      // square root are the slowest operations of the pair (performance-notes).
+      const double reg = r2 + eta2;
+      const double rho_sum = Scheme::momentum ? rhoi + rho[j] : 1.0;
+      const double inv = 1.0 / (r * reg * rho_sum);
+      const double dwdr = kernel.derivative(r);
+      const double f = dwdr * inv * reg * rho_sum;          // (dW/dr) / r
+      const double gwx = f * dx, gwy = f * dy;               // grad_i W_ij
+      const double lap_weight = dwdr * r2 * inv * rho_sum;   // (r_ij . grad W_ij) / (r_ij^2 + eta^2)
       const double volj = vol[j];
       const double uxij = vxi - vx[j], uyij = vyi - vy[j];
       const double u_dot_gradw = uxij * gwx + uyij * gwy;
       if constexpr (Scheme::momentum) {
         const double sp = pressure_gradient_pair(inv_rhoi, pi, p[j], volj);
-        const double sv = viscous_pair(mass, four_nu, rhoi, rho[j], lap_weight);
+        const double sv = viscous_pair(mass, four_nu, r * reg * inv, lap_weight);
         ax += sp * gwx + sv * uxij;
         ay += sp * gwy + sv * uyij;
         cdil += species_dilatation_pair(volj, u_dot_gradw);

@@ -15,10 +15,10 @@ inline double pressure_gradient_pair(double inv_rho_i, double p_i, double p_j, d
 // The paper's factor 8 belongs to the Monaghan form (u_ij . r_ij) grad W; with the pair term
 // (r_ij . grad W) u_ij it gives 4 nu lap(u), so the factor here is 2 (lattice test:
 // tests/test_operators.cpp, ViscousOperatorRecoversNuLaplacian). Uniform nu: 2(nu_i+nu_j) = 4 nu.
-// `lap_weight` = (r_ij . grad W_ij) / (r_ij^2 + eta^2). Returns s with a_mu,i += s * u_ij.
-inline double viscous_pair(double mass, double four_nu, double rho_i, double rho_j,
-                           double lap_weight) {
-  return mass * four_nu / (rho_i + rho_j) * lap_weight;
+// `lap_weight` = (r_ij . grad W_ij) / (r_ij^2 + eta^2), `inv_rho_sum` = 1 / (rho_i + rho_j).
+// Returns s with a_mu,i += s * u_ij.
+inline double viscous_pair(double mass, double four_nu, double inv_rho_sum, double lap_weight) {
+  return mass * four_nu * inv_rho_sum * lap_weight;
 }
 
 }  // namespace adrsph
