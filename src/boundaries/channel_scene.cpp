@@ -58,12 +58,12 @@ ChannelScene::Crossings ChannelScene::update_kinds(ParticleStore& s) const {
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Kind>(s.kind[i]);
     if (k == Kind::inlet && s.x[i] >= 0.0) {
-      s.kind[i] = static_cast<std::uint8_t>(Kind::fluid);
+      s.set_kind(i, Kind::fluid);
       ++entered;
       species_in += s.mass / s.rho[i] * s.c[i];
     }
     if (k == Kind::fluid && s.x[i] >= length) {
-      s.kind[i] = static_cast<std::uint8_t>(Kind::outlet);
+      s.set_kind(i, Kind::outlet);
       ++left;
       species_out += s.mass / s.rho[i] * s.c[i];
     }

@@ -20,7 +20,7 @@ void resize_all(std::size_t n, Arrays&... arrays) {
 
 void ParticleStore::resize(std::size_t n) {
   n_ = n;
-  resize_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, c_mask, ax, ay, drho, dc, sx, sy, x0, y0,
+  resize_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, c_mask, fluid_side, ax, ay, drho, dc, sx, sy, x0, y0,
              vx0, vy0, rho0, c0);
   reset_padding();
 }
@@ -35,6 +35,7 @@ void ParticleStore::reset_padding() {
   p[k] = 0.0;
   vol[k] = 0.0;
   c_mask[k] = 0.0;
+  fluid_side[k] = 0.0;
 }
 
 void ParticleStore::push_back(double px, double py, double pvx, double pvy, double prho,
@@ -47,15 +48,14 @@ void ParticleStore::push_back(double px, double py, double pvx, double pvy, doub
   vy[i] = pvy;
   rho[i] = prho;
   c[i] = pc;
-  kind[i] = static_cast<std::uint8_t>(k);
+  set_kind(i, k);
   p[i] = 0.0;
   vol[i] = prho > 0 ? mass / prho : 0.0;
-  c_mask[i] = k == Kind::wall ? 0.0 : 1.0;
 }
 
 void ParticleStore::permute(std::span<const std::uint32_t> order) {
   std::vector<double> tmp;
-  for (auto* a : {&x, &y, &vx, &vy, &rho, &c, &p, &vol, &c_mask}) permute_array(*a, order, tmp);
+  for (auto* a : {&x, &y, &vx, &vy, &rho, &c, &p, &vol, &c_mask, &fluid_side}) permute_array(*a, order, tmp);
   std::vector<std::uint8_t> tmpk;
   permute_array(kind, order, tmpk);
   n_ = order.size();

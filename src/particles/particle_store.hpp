@@ -22,6 +22,7 @@ struct ParticleStore {
   std::vector<double> p;        // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
   std::vector<double> vol;      // V = m / rho [mm^2]
   std::vector<double> c_mask;   // 1 where the particle carries species (not a wall), else 0
+  std::vector<double> fluid_side;  // 1 for fluid and outlet particles (what boundaries sample)
   // Rates of one evaluation (fluid particles only).
   std::vector<double> ax, ay, drho, dc;
   std::vector<double> sx, sy;  // shifting velocity du (modern scheme), eq. (10)
@@ -42,6 +43,12 @@ struct ParticleStore {
   // Copy the current state into the *0 arrays.
   void save_state();
   void reset_padding();
+  // Keep the masks in step with kind[i] after a kind change.
+  void set_kind(std::size_t i, Kind k) {
+    kind[i] = static_cast<std::uint8_t>(k);
+    c_mask[i] = k == Kind::wall ? 0.0 : 1.0;
+    fluid_side[i] = (k == Kind::fluid || k == Kind::outlet) ? 1.0 : 0.0;
+  }
 
  private:
   std::size_t n_ = 0;
