@@ -27,7 +27,7 @@ struct Case {
   struct Particles {
     double dx = 0.25;          // `particles.dx` [mm], lattice spacing; h = dx
     int wall_layers = 3;       // `particles.wall_layers`, dummy layers (>= 3 for support 3h)
-    int inlet_layers = 5;      // `particles.inlet_layers`, inflow buffer depth in dx
+    int inlet_layers = 7;      // `particles.inlet_layers`, inflow buffer depth in dx
     int outlet_layers = 4;     // `particles.outlet_layers`, outflow buffer depth in dx
     double skin = 0.1;         // `particles.skin`, neighbour-list skin as a fraction of 3h
   } particles;

@@ -63,10 +63,12 @@ void warm_start(const Case& c, SphSolver& target, RunResult& result) {
     if (!solver.step(std::min(dt, c.time.t_end - solver.time()))) break;
     if (solver.time() >= next_check) {
       next_check += c.time.check_interval;
+      solver.sync_for_probes();
       steady.update(solver.time(),
                     solver.sampler().probe_lines(c.geometry.length, c.geometry.half_width, n_section));
     }
   }
+  solver.sync_for_probes();
   const ProbeSampler from = solver.sampler();
   ParticleStore& p = target.particles();
 #pragma omp parallel for schedule(static)
@@ -118,6 +120,7 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
   };
   auto sample = [&] {
     ScopedPhase timer(solver.timers(), Phase::probes);
+    solver.sync_for_probes();
     last_probes = solver.sampler().probe_lines(length, half_width, n_section);
     if (c.time.average_window > 0) {
       window.emplace_back(solver.time(), last_probes);

@@ -33,6 +33,9 @@ SphSolver::SphSolver(const Case& c) : case_(c), scene_(c), kernel_(c.h()) {
 
   skin_ = c.particles.skin * kernel_.support;
   cutoff_ = kernel_.support + skin_;
+  // The most upstream inlet particle sits at most (inlet_layers - 1.5) dx upstream of x = 0
+  // after a feed; the fluid needs particles down to -3 dx (channel_scene.cpp).
+  abs_limit_ = std::max(0.0, (c.particles.inlet_layers - 4.5) * c.particles.dx);
   grid_ = CellGrid(scene_.xmin() - cutoff_, scene_.xmax() + cutoff_, scene_.ymin() - cutoff_,
                    scene_.ymax() + cutoff_, cutoff_);
 
@@ -89,6 +92,15 @@ void SphSolver::rebuild() {
                 static_cast<std::uint32_t>(n));
   }
   moved_ = 0.0;
+  moved_abs_ = 0.0;
+}
+
+bool SphSolver::needs_rebuild() const {
+  return 2.0 * moved_ > skin_ || moved_abs_ > abs_limit_;
+}
+
+void SphSolver::sync_for_probes() {
+  if (2.0 * moved_abs_ > skin_) rebuild();
 }
 
 void SphSolver::evaluate() { (this->*eval_fn_)(); }
@@ -195,7 +207,7 @@ bool SphSolver::step_impl(double dt) {
   t_ += dt;
   ++steps_;
   particle_steps_ += static_cast<double>(store_.size());
-  if (2.0 * moved_ > skin_) {
+  if (needs_rebuild()) {
     const long lost_before = lost_;
     rebuild();
     if (lost_ > lost_before) {
@@ -270,7 +282,16 @@ bool SphSolver::check_state(double dt) {
     s.c = s.c0;
     return false;
   }
-  moved_ += std::sqrt(tmax2) * dt;
+  const double tmax = std::sqrt(tmax2);
+  moved_abs_ += tmax * dt;
+  if (case_.flow == Flow::prescribed) {
+    // Particles follow u(y): two neighbours (|y_i - y_j| < cutoff) separate at most at
+    // |du/dy|max * cutoff = 2 u_max cutoff / R (walls and buffers included), far less than
+    // u_max on fine lattices.
+    moved_ += std::min(tmax, 2.0 * case_.u_max() * cutoff_ / case_.geometry.half_width) * dt;
+  } else {
+    moved_ += tmax * dt;
+  }
   return true;
 }
 

@@ -58,6 +58,8 @@ class SphSolver {
   void evaluate();
   // Re-sort, feed/drain the buffers and rebuild the neighbour lists.
   void rebuild();
+  // Make the cell grid current for probe sampling (re-sort if particles moved > skin/2).
+  void sync_for_probes();
 
  private:
   template <class S, bool Ale> bool step_impl(double dt);
@@ -76,7 +78,13 @@ class SphSolver {
   PhaseTimers timers_;
   bool (SphSolver::*step_fn_)(double) = nullptr;
   void (SphSolver::*eval_fn_)() = nullptr;
-  double cutoff_ = 0.0, skin_ = 0.0, moved_ = 0.0;
+  // Re-sort / list rebuild criterion. moved_ bounds how far two neighbours may have moved
+  // relative to each other since the last build (rebuild at skin/2); moved_abs_ how far any
+  // particle moved (the inflow buffer must be re-fed before its upstream gap reaches the
+  // fluid's support; the probe search needs < skin/2).
+  bool needs_rebuild() const;
+  double cutoff_ = 0.0, skin_ = 0.0, moved_ = 0.0, moved_abs_ = 0.0;
+  double abs_limit_ = 0.0;  // absolute displacement allowed between re-sorts
   double t_ = 0.0;
   long steps_ = 0;
   long lost_ = 0;
