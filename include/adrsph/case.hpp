@@ -68,6 +68,7 @@ struct Case {
     double steady_window = 0.5;      // `time.steady_window` [s], must hold this long
     double average_window = 0.0;     // `time.average_window` [s], probe time average at the end
     bool warm_start = false;         // `time.warm_start`, start C from the prescribed-flow steady state
+    bool species_subcycling = true;  // `time.species_subcycling`, sub-cycle diffusion below the flow dt
   } time;
 
   struct Output {

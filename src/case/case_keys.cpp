@@ -201,6 +201,8 @@ std::vector<KeyDef> make_keys() {
       "time.average_window", [](Case & c) -> auto& { return c.time.average_window; }));
   k.push_back(boolean(
       "time.warm_start", [](Case & c) -> auto& { return c.time.warm_start; }));
+  k.push_back(boolean(
+      "time.species_subcycling", [](Case & c) -> auto& { return c.time.species_subcycling; }));
 
   k.push_back(number_list(
       "output.field_times", [](Case & c) -> auto& { return c.output.field_times; }));

@@ -10,15 +10,17 @@
 
 namespace adrsph {
 
-enum class Phase { sort, neighbours, density, boundaries, forces, integration, probes, output, count };
+enum class Phase {
+  sort, neighbours, density, boundaries, forces, species, integration, probes, output, count
+};
 
 class PhaseTimers {
  public:
   void add(Phase p, double seconds) { total_[static_cast<int>(p)] += seconds; }
   double total(Phase p) const { return total_[static_cast<int>(p)]; }
   std::vector<std::pair<std::string, double>> table() const {
-    static const char* names[] = {"sort",   "neighbours",  "density", "boundaries",
-                                  "forces", "integration", "probes",  "output"};
+    static const char* names[] = {"sort",    "neighbours",  "density", "boundaries", "forces",
+                                  "species", "integration", "probes",  "output"};
     std::vector<std::pair<std::string, double>> t;
     for (int i = 0; i < static_cast<int>(Phase::count); ++i) t.emplace_back(names[i], total_[i]);
     return t;

@@ -39,20 +39,15 @@ SphSolver::SphSolver(const Case& c) : case_(c), scene_(c), kernel_(c.h()) {
   grid_ = CellGrid(scene_.xmin() - cutoff_, scene_.xmax() + cutoff_, scene_.ymin() - cutoff_,
                    scene_.ymax() + cutoff_, cutoff_);
 
-  const bool ale = c.species.ale;
-  if (c.flow == Flow::prescribed) {
-    step_fn_ = &SphSolver::step_impl<PrescribedFlow, false>;
-    eval_fn_ = &SphSolver::evaluate_impl<PrescribedFlow, false>;
-  } else if (c.scheme == Scheme::conventional) {
-    step_fn_ = &SphSolver::step_impl<ConventionalScheme, false>;
-    eval_fn_ = &SphSolver::evaluate_impl<ConventionalScheme, false>;
-  } else if (ale) {
-    step_fn_ = &SphSolver::step_impl<ModernScheme, true>;
-    eval_fn_ = &SphSolver::evaluate_impl<ModernScheme, true>;
-  } else {
-    step_fn_ = &SphSolver::step_impl<ModernScheme, false>;
-    eval_fn_ = &SphSolver::evaluate_impl<ModernScheme, false>;
-  }
+  const bool split = limits_.species_substeps > 1;
+  if (c.flow == Flow::prescribed)
+    bind<PrescribedFlow, false>(split);
+  else if (c.scheme == Scheme::conventional)
+    bind<ConventionalScheme, false>(split);
+  else if (c.species.ale)
+    bind<ModernScheme, true>(split);
+  else
+    bind<ModernScheme, false>(split);
 
   scene_.initialise(store_);
   for (std::size_t i = 0; i < store_.size(); ++i) store_.p[i] = phys_.eos.p_background;
@@ -64,6 +59,13 @@ double SphSolver::species_inventory() const {
   for (std::size_t i = 0; i < store_.size(); ++i)
     if (store_.kind[i] == kFluid) total += phys_.mass / store_.rho[i] * store_.c[i];
   return total;
+}
+
+template <class S, bool Ale>
+void SphSolver::bind(bool split) {
+  step_fn_ = split ? &SphSolver::step_impl<S, Ale, true> : &SphSolver::step_impl<S, Ale, false>;
+  eval_fn_ =
+      split ? &SphSolver::evaluate_impl<S, Ale, true> : &SphSolver::evaluate_impl<S, Ale, false>;
 }
 
 std::size_t SphSolver::fluid_count() const {
@@ -105,7 +107,7 @@ void SphSolver::sync_for_probes() {
 
 void SphSolver::evaluate() { (this->*eval_fn_)(); }
 
-template <class S, bool Ale>
+template <class S, bool Ale, bool Split>
 void SphSolver::evaluate_impl() {
   const PassContext ctx{kernel_, list_, phys_};
   if constexpr (S::summation_density) {
@@ -125,7 +127,7 @@ void SphSolver::evaluate_impl() {
     particle_volumes(store_, phys_.mass);
   }
   ScopedPhase timer(timers_, Phase::forces);
-  interaction_pass<S, Ale>(store_, ctx);
+  interaction_pass<S, Ale, !Split>(store_, ctx);
 }
 
 template <class S>
@@ -160,7 +162,7 @@ void SphSolver::advance(double a) {
   }
 }
 
-template <class S, bool Ale>
+template <class S, bool Ale, bool Split>
 bool SphSolver::step_impl(double dt) {
   {
     ScopedPhase timer(timers_, Phase::integration);
@@ -170,12 +172,19 @@ bool SphSolver::step_impl(double dt) {
     phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
     phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
   }
-  evaluate_impl<S, Ale>();
+  evaluate_impl<S, Ale, Split>();
   advance<S>(0.5 * dt);
-  evaluate_impl<S, Ale>();
-  if (track_balance_)
+  evaluate_impl<S, Ale, Split>();
+  if (!Split && track_balance_)  // (sub-cycled diffusion accounts for its own exchange)
     ledger_.buffer_exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
   advance<S>(dt);
+  if constexpr (Split) {
+    ScopedPhase timer(timers_, Phase::species);
+    // Sub-steps from this step's size (a final short step needs fewer).
+    const int substeps = std::max(1, static_cast<int>(std::ceil(dt / limits_.diffusion * (1.0 - 1e-12))));
+    ledger_.buffer_exchange +=
+        subcycler_.advance(store_, {kernel_, list_, phys_}, dt, substeps, track_balance_);
+  }
   {
     ScopedPhase timer(timers_, Phase::integration);
     // First-order reaction, exact over the step: it commutes with the linear transport

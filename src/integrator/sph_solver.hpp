@@ -14,6 +14,7 @@
 #include "neighbours/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
 #include "schemes/pass_context.hpp"
+#include "species/diffusion_subcycling.hpp"
 
 namespace adrsph {
 
@@ -62,8 +63,9 @@ class SphSolver {
   void sync_for_probes();
 
  private:
-  template <class S, bool Ale> bool step_impl(double dt);
-  template <class S, bool Ale> void evaluate_impl();
+  template <class S, bool Ale, bool Split> bool step_impl(double dt);
+  template <class S, bool Ale, bool Split> void evaluate_impl();
+  template <class S, bool Ale> void bind(bool split);
   template <class S> void advance(double a);  // state = saved state + a * rates
   bool check_state(double dt);
 
@@ -90,6 +92,7 @@ class SphSolver {
   long lost_ = 0;
   ChannelScene::Crossings crossings_;
   SpeciesLedger ledger_;
+  DiffusionSubcycler subcycler_;
   bool track_balance_ = false;
   double particle_steps_ = 0.0;
   std::string failure_;

@@ -6,7 +6,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <string>
 
 #include "adrsph/case.hpp"
 #include "adrsph/simulation.hpp"
@@ -35,6 +37,19 @@ inline TimeStepLimits time_step_limits(const Case& c) {
   consider(l.viscous, "viscous");
   consider(l.diffusion, "diffusion");
   l.chosen = best;
+  // Sub-cycle the species diffusion when it alone holds the step down: the flow (or the
+  // advection) keeps its own step and diffusion takes n sub-steps within it.
+  if (c.time.species_subcycling && c.time.dt == 0 && l.binding == "diffusion") {
+    double flow = std::numeric_limits<double>::infinity();
+    for (double v : {l.acoustic, l.advective, l.viscous})
+      if (v > 0) flow = std::min(flow, v);
+    if (std::isfinite(flow)) {
+      const double n = std::ceil(flow / l.diffusion * (1.0 - 1e-12));
+      l.species_substeps = static_cast<int>(std::min(n, 1e9));  // (per full step; see sph_solver)
+      l.chosen = flow;
+      l.binding = "flow, species diffusion sub-cycled " + std::to_string(l.species_substeps) + "x";
+    }
+  }
   if (c.time.dt > 0) {
     l.chosen = c.time.dt;
     l.binding = "fixed (time.dt)";

@@ -13,7 +13,8 @@
 
 namespace adrsph {
 
-template <class Scheme, bool Ale>
+// Diffuse = false leaves the species diffusion to the sub-cycler (diffusion_subcycling.hpp).
+template <class Scheme, bool Ale, bool Diffuse = true>
 void interaction_pass(ParticleStore& s, const PassContext& ctx) {
   const std::size_t n = s.size();
   const double* x = s.x.data();
@@ -72,7 +73,8 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
         gx += volj * gwx;
         gy += volj * gwy;
       }
-      cdiff += species_diffusion_pair(diffusivity, voli, volj, lap_weight, ci, c[j], cm[j]);
+      if constexpr (Diffuse)
+        cdiff += species_diffusion_pair(diffusivity, voli, volj, lap_weight, ci, c[j], cm[j]);
       if constexpr (Ale && Scheme::shifting) {
         const double dc = cm[j] * volj * (c[j] - ci);  // grad C_i = sum_j V_j (C_j - C_i) grad W
         cgx += dc * gwx;
