@@ -112,5 +112,23 @@ TEST(Robustness, JitteredLatticeStaysStableWithShifting) {
   EXPECT_EQ(solver.lost_particles(), 0);
 }
 
+TEST(Robustness, LostParticleStopsTheRunWithAMessage) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  SphSolver solver(c);
+  auto& p = solver.particles();
+  const std::size_t n_fluid = solver.fluid_count();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] != kFluid) continue;
+    p.y[i] = c.geometry.half_width + 1.5 * c.particles.dx;  // inside the wall layers
+    break;
+  }
+  solver.rebuild();  // finds it beyond the wall and removes it
+  EXPECT_EQ(solver.lost_particles(), 1);
+  EXPECT_EQ(solver.fluid_count(), n_fluid - 1);
+  EXPECT_FALSE(solver.step(solver.dt_limits().chosen));
+  EXPECT_NE(solver.failure().find("left the channel"), std::string::npos) << solver.failure();
+  EXPECT_NE(solver.failure().find("time.cfl"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace adrsph

@@ -216,18 +216,17 @@ bool SphSolver::step_impl(double dt) {
   t_ += dt;
   ++steps_;
   particle_steps_ += static_cast<double>(store_.size());
-  if (needs_rebuild()) {
-    const long lost_before = lost_;
-    rebuild();
-    if (lost_ > lost_before) {
-      std::ostringstream m;
-      m << (lost_ - lost_before) << " fluid particle(s) left the channel through a wall or "
-        << "the inlet by t = " << t_ << " s (step " << steps_ << "). The flow near the "
-        << "boundaries is under-resolved or the step too large: lower time.cfl (now "
-        << case_.time.cfl << ") or keep particles.wall_layers >= 3.";
-      failure_ = m.str();
-      return false;
-    }
+  if (needs_rebuild()) rebuild();
+  // Any rebuild (here or before probe sampling) may have found particles that left.
+  if (lost_ > lost_reported_) {
+    std::ostringstream m;
+    m << (lost_ - lost_reported_) << " fluid particle(s) left the channel through a wall or "
+      << "the inlet by t = " << t_ << " s (step " << steps_ << "). The flow near the "
+      << "boundaries is under-resolved or the step too large: lower time.cfl (now "
+      << case_.time.cfl << ") or keep particles.wall_layers >= 3.";
+    lost_reported_ = lost_;
+    failure_ = m.str();
+    return false;
   }
   return true;
 }

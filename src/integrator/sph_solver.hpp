@@ -90,6 +90,7 @@ class SphSolver {
   double t_ = 0.0;
   long steps_ = 0;
   long lost_ = 0;
+  long lost_reported_ = 0;  // lost_ at the last failure report
   ChannelScene::Crossings crossings_;
   SpeciesLedger ledger_;
   DiffusionSubcycler subcycler_;
