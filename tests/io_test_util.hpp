@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace adrsph::test {
 
@@ -75,5 +76,33 @@ inline CommandResult run_adrsph(const std::string& args, const std::filesystem::
   std::filesystem::remove(err);
   return r;
 }
+
+// The keys of run.json that later tools read (README, output contract).
+inline const std::vector<const char*> kRunJsonKeys = {"case",
+                                                      "case_file",
+                                                      "scheme",
+                                                      "flow",
+                                                      "Pe",
+                                                      "D",
+                                                      "k",
+                                                      "dx",
+                                                      "particles",
+                                                      "fluid_particles",
+                                                      "threads",
+                                                      "t_end",
+                                                      "t_reached",
+                                                      "steps",
+                                                      "wall_seconds",
+                                                      "particle_steps_per_second",
+                                                      "dt",
+                                                      "steady",
+                                                      "t_steady",
+                                                      "lost_particles",
+                                                      "status",
+                                                      "message",
+                                                      "probe_interpolation",
+                                                      "average_window",
+                                                      "phase_seconds",
+                                                      "stations"};
 
 }  // namespace adrsph::test

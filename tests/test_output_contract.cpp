@@ -48,33 +48,7 @@ test::CommandResult OutputContract::result_;
 
 TEST_F(OutputContract, RunJson) {
   const auto j = nlohmann::json::parse(test::read_file(out() / "run.json"));
-  for (const char* key : {"case",
-                          "case_file",
-                          "scheme",
-                          "flow",
-                          "Pe",
-                          "D",
-                          "k",
-                          "dx",
-                          "particles",
-                          "fluid_particles",
-                          "threads",
-                          "t_end",
-                          "t_reached",
-                          "steps",
-                          "wall_seconds",
-                          "particle_steps_per_second",
-                          "dt",
-                          "steady",
-                          "t_steady",
-                          "lost_particles",
-                          "status",
-                          "message",
-                          "probe_interpolation",
-                          "average_window",
-                          "phase_seconds",
-                          "stations"})
-    EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : test::kRunJsonKeys) EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["case"], "lfr");
   EXPECT_EQ(j["scheme"], "modern");
   EXPECT_EQ(j["flow"], "prescribed");

@@ -40,33 +40,7 @@ Case sample_case() {
 
 TEST(RunJson, EveryKey) {
   const auto j = nlohmann::json::parse(run_json_text(sample_case(), sample_result(), {2, 13.0, 3}));
-  for (const char* key : {"case",
-                          "case_file",
-                          "scheme",
-                          "flow",
-                          "Pe",
-                          "D",
-                          "k",
-                          "dx",
-                          "particles",
-                          "fluid_particles",
-                          "threads",
-                          "t_end",
-                          "t_reached",
-                          "steps",
-                          "wall_seconds",
-                          "particle_steps_per_second",
-                          "dt",
-                          "steady",
-                          "t_steady",
-                          "lost_particles",
-                          "status",
-                          "message",
-                          "probe_interpolation",
-                          "average_window",
-                          "phase_seconds",
-                          "stations"})
-    EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : test::kRunJsonKeys) EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["case"], "sample");
   EXPECT_EQ(j["case_file"], "cases/sample.toml");
   EXPECT_EQ(j["scheme"], "conventional");
