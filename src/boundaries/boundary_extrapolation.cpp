@@ -6,13 +6,14 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
   const std::size_t n = s.size();
   const double* x = s.x.data();
   const double* y = s.y.data();
-  const double* p = s.p.data();
+  const float* p = s.p.data();
   const double* vx = s.vx.data();
   const double* vy = s.vy.data();
   const std::uint8_t* kind = s.kind.data();
-  const double* side = s.fluid_side.data();
+  const float* side = s.fluid_side.data();
   const std::uint32_t* nb = ctx.neighbours.data();
   const TaitEos& eos = ctx.phys.eos;
+  const double mass = ctx.phys.mass;
   constexpr auto wall = static_cast<std::uint8_t>(Kind::wall);
   constexpr auto inlet = static_cast<std::uint8_t>(Kind::inlet);
   constexpr auto outlet = static_cast<std::uint8_t>(Kind::outlet);
@@ -20,8 +21,9 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (kind[i] != outlet) continue;
-    s.p[i] = eos.p_background;
+    s.p[i] = static_cast<float>(eos.p_background);
     s.rho[i] = eos.rho0;
+    s.vol[i] = static_cast<float>(mass / eos.rho0);
   }
   // Walls and inlet read only fluid and outlet particles, so writing their own p is race-free.
 #pragma omp parallel for schedule(static)
@@ -43,8 +45,10 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
       sv += w * vy[j];
     }
     const double pw = sw > 0.0 ? sp / sw : eos.p_background;
-    s.p[i] = pw;
-    s.rho[i] = eos.density(pw);
+    const double rhow = eos.density(pw);
+    s.p[i] = static_cast<float>(pw);
+    s.rho[i] = rhow;
+    s.vol[i] = static_cast<float>(mass / rhow);
     if (ki == wall) {
       s.vx[i] = sw > 0.0 ? -su / sw : 0.0;
       s.vy[i] = sw > 0.0 ? -sv / sw : 0.0;

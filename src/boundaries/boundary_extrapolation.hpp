@@ -4,7 +4,7 @@
 //   u_w = -sum_f u_f W_wf / sum_f W_wf   (no slip: 2 u_wall - u~ with u_wall = 0).
 // Inlet buffer particles take p and rho the same way (zero pressure gradient at the inlet),
 // keeping their prescribed velocity. Outlet buffer particles carry the reference pressure
-// (p = p_b, rho = rho0) and their frozen velocity.
+// (p = p_b, rho = rho0) and their frozen velocity. Every boundary particle also gets V = m / rho.
 #pragma once
 
 #include "schemes/pass_context.hpp"

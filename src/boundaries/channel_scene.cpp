@@ -26,6 +26,11 @@ void ChannelScene::initialise(ParticleStore& s) const {
   s.resize(0);
   s.mass = rho0_ * dx_ * dx_;
   const int nx = static_cast<int>(std::lround(length_ / dx_));
+  const int nwx = static_cast<int>(std::lround((wall_x1_ - wall_x0_) / dx_));
+  // Exact room, plus two inflow rows for the feed (re-sorts drop outflow particles as fast).
+  const std::size_t ny = row_y_.size();
+  s.reserve(ny * static_cast<std::size_t>(inlet_layers_ + nx + outlet_layers_ + 2) +
+            2 * static_cast<std::size_t>(wall_layers_ * nwx));
   for (double yr : row_y_) {
     const double u = inflow_velocity(yr);
     for (int i = 0; i < inlet_layers_; ++i)
@@ -34,7 +39,6 @@ void ChannelScene::initialise(ParticleStore& s) const {
     for (int i = 0; i < outlet_layers_; ++i)
       s.push_back(length_ + (i + 0.5) * dx_, yr, u, 0.0, rho0_, c_init_, Kind::outlet);
   }
-  const int nwx = static_cast<int>(std::lround((wall_x1_ - wall_x0_) / dx_));
   for (int k = 0; k < wall_layers_; ++k) {
     const double yw = half_width_ + (k + 0.5) * dx_;
     for (int i = 0; i < nwx; ++i) {

@@ -115,22 +115,21 @@ void SphSolver::evaluate_impl() {
     summation_density(store_, ctx);
   }
   if constexpr (S::momentum) {
-    {
+    if constexpr (!S::summation_density) {
       ScopedPhase timer(timers_, Phase::density);
-      fluid_pressure(store_, phys_.eos);
+      fluid_pressure(store_, phys_.eos, phys_.mass);
     }
-    {
-      ScopedPhase timer(timers_, Phase::boundaries);
-      extrapolate_to_boundaries(store_, ctx);
-    }
-    ScopedPhase timer(timers_, Phase::density);
-    particle_volumes(store_, phys_.mass);
+    ScopedPhase timer(timers_, Phase::boundaries);
+    extrapolate_to_boundaries(store_, ctx);
   }
   ScopedPhase timer(timers_, Phase::forces);
   interaction_pass<S, Ale, !Split>(store_, ctx);
 }
 
-template <class S>
+// Explicit midpoint: u* = u0 + a f(u), with a = dt/2 from the start state, then a = dt.
+// Stage 1 (Save) also keeps the start state u0 of the non-wall particles: one pass over the
+// arrays instead of a separate copy (walls are never advanced, so they need no u0).
+template <class S, bool Save>
 void SphSolver::advance(double a) {
   ScopedPhase timer(timers_, Phase::integration);
   ParticleStore& s = store_;
@@ -139,6 +138,14 @@ void SphSolver::advance(double a) {
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t k = s.kind[i];
     if (k == kWall) continue;
+    if constexpr (Save) {
+      s.x0[i] = s.x[i];
+      s.y0[i] = s.y[i];
+      s.vx0[i] = s.vx[i];
+      s.vy0[i] = s.vy[i];
+      s.rho0[i] = s.rho[i];
+      s.c0[i] = s.c[i];
+    }
     if (k == kFluid && S::momentum) {
       // Midpoint: positions move with the current (transport) velocity, then u is updated.
       double tx = s.vx[i], ty = s.vy[i];
@@ -164,20 +171,16 @@ void SphSolver::advance(double a) {
 
 template <class S, bool Ale, bool Split>
 bool SphSolver::step_impl(double dt) {
-  {
-    ScopedPhase timer(timers_, Phase::integration);
-    store_.save_state();
-  }
   if constexpr (S::shifting) {
     phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
     phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
   }
   evaluate_impl<S, Ale, Split>();
-  advance<S>(0.5 * dt);
+  advance<S, true>(0.5 * dt);
   evaluate_impl<S, Ale, Split>();
   if (!Split && track_balance_)  // (sub-cycled diffusion accounts for its own exchange)
     ledger_.buffer_exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
-  advance<S>(dt);
+  advance<S, false>(dt);
   if constexpr (Split) {
     ScopedPhase timer(timers_, Phase::species);
     // Sub-steps from this step's size (a final short step needs fewer).
@@ -281,13 +284,16 @@ bool SphSolver::check_state(double dt) {
                              << limits_.acoustic << " s)";
     m << ", or time.diffusion_number (now " << case_.time.diffusion_number << ").";
     failure_ = m.str();
-    // Restore the last good state (start of this step).
-    s.x = s.x0;
-    s.y = s.y0;
-    s.vx = s.vx0;
-    s.vy = s.vy0;
-    s.rho = s.rho0;
-    s.c = s.c0;
+    // Restore the last good state (start of this step; walls were not advanced).
+    for (std::size_t i = 0; i < n; ++i) {
+      if (s.kind[i] == kWall) continue;
+      s.x[i] = s.x0[i];
+      s.y[i] = s.y0[i];
+      s.vx[i] = s.vx0[i];
+      s.vy[i] = s.vy0[i];
+      s.rho[i] = s.rho0[i];
+      s.c[i] = s.c0[i];
+    }
     return false;
   }
   const double tmax = std::sqrt(tmax2);

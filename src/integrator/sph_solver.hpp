@@ -66,7 +66,8 @@ class SphSolver {
   template <class S, bool Ale, bool Split> bool step_impl(double dt);
   template <class S, bool Ale, bool Split> void evaluate_impl();
   template <class S, bool Ale> void bind(bool split);
-  template <class S> void advance(double a);  // state = saved state + a * rates
+  // state = saved state + a * rates; Save: first stage, also saves the start state
+  template <class S, bool Save> void advance(double a);
   bool check_state(double dt);
 
   Case case_;

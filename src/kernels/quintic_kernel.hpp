@@ -31,13 +31,17 @@ struct QuinticKernel {
   }
 
   // dW/dr (<= 0). The passes divide by r themselves, sharing one division between several
-  // factors (see interaction_pass.hpp).
-  double derivative(double r) const {
-    const double q = r * inv_h;
-    const double t3 = positive(3.0 - q), t2 = positive(2.0 - q), t1 = positive(1.0 - q);
-    const double t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
-    return sigma * inv_h * (-5.0 * t3_2 * t3_2 + 30.0 * t2_2 * t2_2 - 75.0 * t1_2 * t1_2);
+  // factors (see interaction_pass.hpp). T = float for the single-precision force pass.
+  template <class T = double>
+  T derivative(T r) const {
+    const T q = r * static_cast<T>(inv_h);
+    const T t3 = positive_t(T(3) - q), t2 = positive_t(T(2) - q), t1 = positive_t(T(1) - q);
+    const T t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
+    return static_cast<T>(sigma * inv_h) *
+           (T(-5) * t3_2 * t3_2 + T(30) * t2_2 * t2_2 - T(75) * t1_2 * t1_2);
   }
+  template <class T>
+  static T positive_t(T v) { return T(0.5) * (v + std::fabs(v)); }
 
   // (dW/dr) / r, so that grad_i W_ij = F(r_ij) * (r_i - r_j). Zero beyond the support and
   // finite at r = 0 (dW/dr vanishes there).

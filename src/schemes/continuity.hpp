@@ -7,14 +7,16 @@
 namespace adrsph {
 
 // rho_i V_j u_ij . grad W_ij
-inline double continuity_pair(double rho_i, double vol_j, double u_dot_gradw) {
+template <class T>
+inline T continuity_pair(T rho_i, T vol_j, T u_dot_gradw) {
   return rho_i * vol_j * u_dot_gradw;
 }
 
 // delta h c0 * 2 V_j (rho_i - rho_j) lap_weight; `delta_h_c0_2` = 2 delta h c0.
-inline double density_diffusion_pair(double delta_h_c0_2, double vol_j, double rho_i,
-                                     double rho_j, double lap_weight) {
-  return delta_h_c0_2 * vol_j * (rho_i - rho_j) * lap_weight;
+// (rho_ij = rho_i - rho_j, taken in double by the caller: the differences are ~1e-4 rho.)
+template <class T>
+inline T density_diffusion_pair(T delta_h_c0_2, T vol_j, T rho_ij, T lap_weight) {
+  return delta_h_c0_2 * vol_j * rho_ij * lap_weight;
 }
 
 }  // namespace adrsph

@@ -9,6 +9,7 @@ void summation_density(ParticleStore& s, const PassContext& ctx) {
   const std::uint32_t* nb = ctx.neighbours.data();
   const double self = ctx.kernel.value(0.0);
   const double mass = ctx.phys.mass;
+  const TaitEos& eos = ctx.phys.eos;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
@@ -20,21 +21,21 @@ void summation_density(ParticleStore& s, const PassContext& ctx) {
       const double dx = xi - x[j], dy = yi - y[j];
       sum += ctx.kernel.value(std::sqrt(dx * dx + dy * dy));
     }
-    s.rho[i] = mass * sum;
+    const double rhoi = mass * sum;
+    s.rho[i] = rhoi;
+    s.p[i] = static_cast<float>(eos.pressure(rhoi));
+    s.vol[i] = static_cast<float>(mass / rhoi);
   }
 }
 
-void fluid_pressure(ParticleStore& s, const TaitEos& eos) {
+void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass) {
   const std::size_t n = s.size();
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    if (s.kind[i] == static_cast<std::uint8_t>(Kind::fluid)) s.p[i] = eos.pressure(s.rho[i]);
-}
-
-void particle_volumes(ParticleStore& s, double mass) {
-  const std::size_t n = s.size();
-#pragma omp parallel for simd schedule(static)
-  for (std::size_t i = 0; i < n; ++i) s.vol[i] = mass / s.rho[i];
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
+    s.p[i] = static_cast<float>(eos.pressure(s.rho[i]));
+    s.vol[i] = static_cast<float>(mass / s.rho[i]);
+  }
 }
 
 }  // namespace adrsph

@@ -6,13 +6,11 @@
 namespace adrsph {
 
 // Conventional scheme: rho_i = m sum_j W_ij (self included), eq. (3) with W for the printed
-// grad W (spec section 2). Fluid particles only.
+// grad W (spec section 2), then p_i and V_i as fluid_pressure() does. Fluid particles only.
 void summation_density(ParticleStore& s, const PassContext& ctx);
 
-// p_i = Tait(rho_i) (+ p_b), eq. (2). Fluid particles only.
-void fluid_pressure(ParticleStore& s, const TaitEos& eos);
-
-// V = m / rho for every particle.
-void particle_volumes(ParticleStore& s, double mass);
+// p_i = Tait(rho_i) (+ p_b), eq. (2), and V_i = m / rho_i. Fluid particles only (the boundary
+// pass sets both for the others).
+void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass);
 
 }  // namespace adrsph

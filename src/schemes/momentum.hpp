@@ -6,7 +6,8 @@ namespace adrsph {
 // Pressure gradient, Colagrossi form, eq. (6) with the sign restored (spec section 2):
 //   a_p,i = -(1/rho_i) sum_j V_j (p_i + p_j) grad_i W_ij.
 // Returns the scalar s with a_p,i += s * grad_i W_ij.
-inline double pressure_gradient_pair(double inv_rho_i, double p_i, double p_j, double vol_j) {
+template <class T>
+inline T pressure_gradient_pair(T inv_rho_i, T p_i, T p_j, T vol_j) {
   return -inv_rho_i * vol_j * (p_i + p_j);
 }
 
@@ -17,7 +18,8 @@ inline double pressure_gradient_pair(double inv_rho_i, double p_i, double p_j, d
 // tests/test_operators.cpp, ViscousOperatorRecoversNuLaplacian). Uniform nu: 2(nu_i+nu_j) = 4 nu.
 // `lap_weight` = (r_ij . grad W_ij) / (r_ij^2 + eta^2), `inv_rho_sum` = 1 / (rho_i + rho_j).
 // Returns s with a_mu,i += s * u_ij.
-inline double viscous_pair(double mass, double four_nu, double inv_rho_sum, double lap_weight) {
+template <class T>
+inline T viscous_pair(T mass, T four_nu, T inv_rho_sum, T lap_weight) {
   return mass * four_nu * inv_rho_sum * lap_weight;
 }
 

@@ -12,7 +12,15 @@ struct TaitEos {
   double stiffness() const { return rho0 * c0 * c0 / gamma; }
   // p = rho0 c0^2 / gamma ((rho / rho0)^gamma - 1) + p_b          eq. (2)
   double pressure(double rho) const {
-    return stiffness() * (std::pow(rho / rho0, gamma) - 1.0) + p_background;
+    return stiffness() * (power(rho / rho0) - 1.0) + p_background;
+  }
+  // (rho / rho0)^gamma: the paper's gamma = 7 by multiplications (pow was 5% of a step).
+  double power(double r) const {
+    if (gamma == 7.0) {
+      const double r2 = r * r;
+      return r2 * r2 * r2 * r;
+    }
+    return std::pow(r, gamma);
   }
   // Inverse of pressure(): the density a boundary particle needs to carry pressure p.
   double density(double p) const {

@@ -18,8 +18,8 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
   const std::uint32_t* nb = ctx.neighbours.data();
   const double* x = s.x.data();
   const double* y = s.y.data();
-  const double* vol = s.vol.data();
-  const double* cm = s.c_mask.data();
+  const float* vol = s.vol.data();
+  const float* cm = s.c_mask.data();
   const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.diffusivity;
   float* w = weight_.data();
 #pragma omp parallel for schedule(static)
@@ -32,9 +32,9 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
       const double dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
       const double r = std::sqrt(r2) + 1e-30;
       const double lap_weight = ctx.kernel.derivative(r) * r / (r2 + eta2);
-      // species_diffusion_pair(D, V_i, V_j, lap_weight, c_i, c_j, mask) = w_ij (c_i - c_j)
-      w[k] = static_cast<float>(species_diffusion_pair(diffusivity, voli, vol[j], lap_weight,
-                                                       1.0, 0.0, cm[j]));
+      // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
+      w[k] = static_cast<float>(species_diffusion_pair<double>(diffusivity, voli, vol[j],
+                                                               lap_weight, 1.0, cm[j]));
     }
   }
 }

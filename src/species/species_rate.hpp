@@ -11,13 +11,16 @@ namespace adrsph {
 
 // Diffusion pair term with uniform D: (m_j/rho_j + m_i/rho_i) D lap_weight (C_i - C_j).
 // Walls carry no species (c_mask_j = 0): no flux through them, exactly.
-inline double species_diffusion_pair(double diffusivity, double vol_i, double vol_j,
-                                     double lap_weight, double c_i, double c_j, double c_mask_j) {
-  return c_mask_j * diffusivity * (vol_i + vol_j) * lap_weight * (c_i - c_j);
+// `c_ij` = C_i - C_j (taken in double by the callers).
+template <class T>
+inline T species_diffusion_pair(T diffusivity, T vol_i, T vol_j, T lap_weight, T c_ij,
+                                T c_mask_j) {
+  return c_mask_j * diffusivity * (vol_i + vol_j) * lap_weight * c_ij;
 }
 
 // Sum of V_j u_ij . grad W_ij; times C_i it is the -C div u term.
-inline double species_dilatation_pair(double vol_j, double u_dot_gradw) {
+template <class T>
+inline T species_dilatation_pair(T vol_j, T u_dot_gradw) {
   return vol_j * u_dot_gradw;
 }
 
