@@ -29,7 +29,7 @@ struct Case {
     int wall_layers = 3;       // `particles.wall_layers`, dummy layers (>= 3 for support 3h)
     int inlet_layers = 7;      // `particles.inlet_layers`, inflow buffer depth in dx
     int outlet_layers = 4;     // `particles.outlet_layers`, outflow buffer depth in dx
-    double skin = 0.1;         // `particles.skin`, neighbour-list skin as a fraction of 3h
+    double skin = 0.05;        // `particles.skin`, neighbour-list skin as a fraction of 3h
   } particles;
 
   struct Fluid {

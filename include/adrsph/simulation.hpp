@@ -59,6 +59,8 @@ struct RunResult {
   std::size_t n_particles = 0;   // all particles (fluid + wall + buffers) at the end
   std::size_t n_fluid = 0;       // fluid particles at the end
   double particle_steps_per_s = 0.0;  // sum over steps of particles / wall time
+  long list_rebuilds = 0;             // re-sorts + neighbour-list builds (set-up included)
+  double mean_neighbours = 0.0;       // list entries per particle at the last build (skin incl.)
   TimeStepLimits dt;
   bool steady = false;
   double t_steady = 0.0;

@@ -1,6 +1,7 @@
 // End-of-run summary: case, numbers, phase timers, station averages, where the files are.
 #include "cli/run_summary.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -46,6 +47,10 @@ void print_summary(std::ostream& os, const Case& c, const RunResult& r, const Su
        << (r.dt.binding.empty() ? "?" : r.dt.binding) << " limit)\n";
   os << "  steady state: "
      << (r.steady ? "yes, at t = " + fmt("%.4g", r.t_steady) + " s" : std::string("no")) << "\n";
+  if (r.steps > 0)
+    os << "  neighbour lists: " << r.list_rebuilds << " builds (one per "
+       << fmt("%.3g", static_cast<double>(r.steps) / std::max(1L, r.list_rebuilds)) << " steps), "
+       << fmt("%.1f", r.mean_neighbours) << " entries per particle\n";
   if (r.lost_particles > 0) os << "  lost particles: " << r.lost_particles << "\n";
   print_phases(os, r);
   if (!r.stations.x_mm.empty()) {

@@ -181,6 +181,8 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
   // Throughput of the stepping alone (set-up and warm start excluded).
   result.particle_steps_per_s =
       solver.particle_steps() / std::max(omp_get_wtime() - wall_steps_start, 1e-9);
+  result.list_rebuilds = solver.list_rebuilds();
+  result.mean_neighbours = solver.mean_neighbours();
   result.steady = steady.steady();
   result.t_steady = steady.t_steady();
   result.lost_particles = solver.lost_particles();

@@ -92,13 +92,19 @@ void SphSolver::rebuild() {
     const std::size_t n = store_.size();
     list_.build(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n), cutoff_,
                 static_cast<std::uint32_t>(n));
+    monitor_.reset(std::span(store_.x).first(n), std::span(store_.y).first(n));
   }
-  moved_ = 0.0;
   moved_abs_ = 0.0;
+  ++rebuilds_;
 }
 
-bool SphSolver::needs_rebuild() const {
-  return 2.0 * moved_ > skin_ || moved_abs_ > abs_limit_;
+bool SphSolver::needs_rebuild() {
+  if (moved_abs_ > abs_limit_) return true;
+  if (2.0 * moved_abs_ <= skin_) return false;  // no particle moved skin/2: nothing to check
+  ScopedPhase timer(timers_, Phase::neighbours);
+  const std::size_t n = store_.size();
+  return monitor_.max_relative(grid_, std::span(store_.x).first(n),
+                               std::span(store_.y).first(n)) > skin_;
 }
 
 void SphSolver::sync_for_probes() {
@@ -298,14 +304,6 @@ bool SphSolver::check_state(double dt) {
   }
   const double tmax = std::sqrt(tmax2);
   moved_abs_ += tmax * dt;
-  if (case_.flow == Flow::prescribed) {
-    // Particles follow u(y): two neighbours (|y_i - y_j| < cutoff) separate at most at
-    // |du/dy|max * cutoff = 2 u_max cutoff / R (walls and buffers included), far less than
-    // u_max on fine lattices.
-    moved_ += std::min(tmax, 2.0 * case_.u_max() * cutoff_ / case_.geometry.half_width) * dt;
-  } else {
-    moved_ += tmax * dt;
-  }
   return true;
 }
 

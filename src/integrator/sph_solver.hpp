@@ -11,6 +11,7 @@
 #include "boundaries/channel_scene.hpp"
 #include "integrator/phase_timers.hpp"
 #include "neighbours/cell_grid.hpp"
+#include "neighbours/displacement_monitor.hpp"
 #include "neighbours/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
 #include "schemes/pass_context.hpp"
@@ -51,6 +52,7 @@ class SphSolver {
   double species_inventory() const;
   std::size_t fluid_count() const;
   double mean_neighbours() const { return list_.mean_neighbours(); }
+  long list_rebuilds() const { return rebuilds_; }
   double particle_steps() const { return particle_steps_; }
   ProbeSampler sampler() const { return ProbeSampler{store_, grid_, kernel_}; }
   FieldFrame frame(std::vector<double>& pressure_pa) const;
@@ -81,12 +83,14 @@ class SphSolver {
   PhaseTimers timers_;
   bool (SphSolver::*step_fn_)(double) = nullptr;
   void (SphSolver::*eval_fn_)() = nullptr;
-  // Re-sort / list rebuild criterion. moved_ bounds how far two neighbours may have moved
-  // relative to each other since the last build (rebuild at skin/2); moved_abs_ how far any
-  // particle moved (the inflow buffer must be re-fed before its upstream gap reaches the
-  // fluid's support; the probe search needs < skin/2).
-  bool needs_rebuild() const;
-  double cutoff_ = 0.0, skin_ = 0.0, moved_ = 0.0, moved_abs_ = 0.0;
+  // Re-sort / list rebuild criterion. moved_abs_ bounds how far any particle moved since the
+  // last build (the inflow buffer must be re-fed before its upstream gap reaches the fluid's
+  // support; the probe search needs < skin/2). Once 2 moved_abs_ > skin, the monitor bounds
+  // the relative displacement of possible pairs (displacement_monitor.hpp).
+  bool needs_rebuild();
+  DisplacementMonitor monitor_;
+  long rebuilds_ = 0;
+  double cutoff_ = 0.0, skin_ = 0.0, moved_abs_ = 0.0;
   double abs_limit_ = 0.0;  // absolute displacement allowed between re-sorts
   double t_ = 0.0;
   long steps_ = 0;

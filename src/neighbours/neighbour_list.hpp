@@ -14,7 +14,7 @@ namespace adrsph {
 
 class NeighbourList {
  public:
-  static constexpr std::uint32_t kPad = 4;
+  static constexpr std::uint32_t kPad = 8;
 
   // Build for particles already sorted by `grid` (grid.sort() then permuted). Self excluded.
   void build(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
