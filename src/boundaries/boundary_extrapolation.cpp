@@ -12,7 +12,8 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
   const std::uint8_t* kind = s.kind.data();
   const float* side = s.fluid_side.data();
   const std::uint32_t* nb = ctx.neighbours.data();
-  const TaitEos& eos = ctx.phys.eos;
+  const TaitEos eos = ctx.phys.eos;
+  const QuinticKernel kernel = ctx.kernel;  // local copies: see interaction_pass.hpp
   const double mass = ctx.phys.mass;
   constexpr auto wall = static_cast<std::uint8_t>(Kind::wall);
   constexpr auto inlet = static_cast<std::uint8_t>(Kind::inlet);
@@ -31,27 +32,29 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
     const std::uint8_t ki = kind[i];
     if (ki != wall && ki != inlet) continue;
     const double xi = x[i], yi = y[i];
-    double sw = 0.0, sp = 0.0, su = 0.0, sv = 0.0;
+    // Single precision, like the other neighbour passes (shepard averages of float p).
+    float sw = 0.0f, sp = 0.0f, su = 0.0f, sv = 0.0f;
+    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
 #pragma omp simd reduction(+ : sw, sp, su, sv)
-    for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
+    for (std::uint32_t k = kb; k < ke; ++k) {
       const std::uint32_t j = nb[k];
-      const double dx = xi - x[j], dy = yi - y[j];
-      // Fluid and outlet particles are the "fluid side" a boundary particle samples (a double
+      const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
+      // Fluid and outlet particles are the "fluid side" a boundary particle samples (a float
       // mask, not kind[j]: a byte gather keeps g++ from vectorising the loop).
-      const double w = side[j] * ctx.kernel.value(std::sqrt(dx * dx + dy * dy));
+      const float w = side[j] * kernel.value<float>(std::sqrt(dx * dx + dy * dy));
       sw += w;
       sp += w * p[j];
-      su += w * vx[j];
-      sv += w * vy[j];
+      su += w * static_cast<float>(vx[j]);
+      sv += w * static_cast<float>(vy[j]);
     }
-    const double pw = sw > 0.0 ? sp / sw : eos.p_background;
+    const double pw = sw > 0.0f ? double(sp) / sw : eos.p_background;
     const double rhow = eos.density(pw);
     s.p[i] = static_cast<float>(pw);
     s.rho[i] = rhow;
     s.vol[i] = static_cast<float>(mass / rhow);
     if (ki == wall) {
-      s.vx[i] = sw > 0.0 ? -su / sw : 0.0;
-      s.vy[i] = sw > 0.0 ? -sv / sw : 0.0;
+      s.vx[i] = sw > 0.0f ? -double(su) / sw : 0.0;
+      s.vy[i] = sw > 0.0f ? -double(sv) / sw : 0.0;
     }
   }
 }

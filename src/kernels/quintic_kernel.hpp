@@ -22,12 +22,14 @@ struct QuinticKernel {
 
   static double positive(double v) { return 0.5 * (v + std::fabs(v)); }
 
-  // W(r)
-  double value(double r) const {
-    const double q = r * inv_h;
-    const double t3 = positive(3.0 - q), t2 = positive(2.0 - q), t1 = positive(1.0 - q);
-    const double t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
-    return sigma * (t3_2 * t3_2 * t3 - 6.0 * t2_2 * t2_2 * t2 + 15.0 * t1_2 * t1_2 * t1);
+  // W(r). T = float for the single-precision passes.
+  template <class T = double>
+  T value(T r) const {
+    const T q = r * static_cast<T>(inv_h);
+    const T t3 = positive_t(T(3) - q), t2 = positive_t(T(2) - q), t1 = positive_t(T(1) - q);
+    const T t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
+    return static_cast<T>(sigma) *
+           (t3_2 * t3_2 * t3 - T(6) * t2_2 * t2_2 * t2 + T(15) * t1_2 * t1_2 * t1);
   }
 
   // dW/dr (<= 0). The passes divide by r themselves, sharing one division between several

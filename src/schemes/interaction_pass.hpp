@@ -35,7 +35,9 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
   const double* c = s.c.data();
   const float* cm = s.c_mask.data();
   const std::uint32_t* nb = ctx.neighbours.data();
-  const QuinticKernel& kernel = ctx.kernel;
+  // Local copies: the stores of the rates below may alias references, and g++ then reloads
+  // them inside the loops (2x slower, measured on the summation density).
+  const QuinticKernel kernel = ctx.kernel;
   const PhysicsConstants& ph = ctx.phys;
   const real eta2 = static_cast<real>(ph.eta2), mass = static_cast<real>(ph.mass);
   const real four_nu = static_cast<real>(ph.four_nu), dh = static_cast<real>(ph.delta_h_c0_2);
@@ -49,8 +51,9 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
     const real inv_rhoi = real(1) / rhoi;
     real ax = 0, ay = 0, drho = 0, gx = 0, gy = 0;  // flow
     real cdiff = 0, cdil = 0, cgx = 0, cgy = 0;     // species
+    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
 #pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy)
-    for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
+    for (std::uint32_t k = kb; k < ke; ++k) {
       const std::uint32_t j = nb[k];
       const real dx = static_cast<real>(xi - x[j]), dy = static_cast<real>(yi - y[j]);
       const real r2 = dx * dx + dy * dy;

@@ -21,17 +21,19 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
   const float* vol = s.vol.data();
   const float* cm = s.c_mask.data();
   const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.diffusivity;
+  const QuinticKernel kernel = ctx.kernel;  // local copy: see interaction_pass.hpp
   float* w = weight_.data();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != kFluid) continue;
     const double xi = x[i], yi = y[i], voli = vol[i];
+    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
 #pragma omp simd
-    for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
+    for (std::uint32_t k = kb; k < ke; ++k) {
       const std::uint32_t j = nb[k];
       const double dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
       const double r = std::sqrt(r2) + 1e-30;
-      const double lap_weight = ctx.kernel.derivative(r) * r / (r2 + eta2);
+      const double lap_weight = kernel.derivative(r) * r / (r2 + eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
       w[k] = static_cast<float>(species_diffusion_pair<double>(diffusivity, voli, vol[j],
                                                                lap_weight, 1.0, cm[j]));
@@ -52,8 +54,9 @@ double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
     if (s.kind[i] != kFluid) continue;
     const double ci = cc[i];
     double sum = 0.0;
+    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
 #pragma omp simd reduction(+ : sum)
-    for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k)
+    for (std::uint32_t k = kb; k < ke; ++k)
       sum += w[k] * (ci - cc[nb[k]]);
     rate[i] = sum;
     if (track) {  // flux from the buffers, for the species balance (tests, diagnostics)
