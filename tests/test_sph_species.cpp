@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrator/sph_solver.hpp"
+#include "species/diffusion_subcycling.hpp"
 #include "sph_test_cases.hpp"
 
 namespace adrsph {
@@ -65,7 +66,7 @@ TEST(Species, GaussianDiffusionMatchesAnalyticSolution) {
   std::printf("Gaussian diffusion, max error / peak: dx = 0.25: %.3f%%, dx = 0.125: %.3f%%\n",
               100 * coarse, 100 * fine);
   // Stated tolerance: 1.5% of the peak at s0 = 4 dx, and the error must fall on refinement.
-  // Measured: 1.05% and 0.49%, about first order: eta = 0.1 h scales with h, so the eta^2
+  // Measured: 1.15% and 0.50% (RKL2 diffusion steps; 1.05% and 0.49% with midpoint sub-steps), about first order: eta = 0.1 h scales with h, so the eta^2
   // regularisation of eqs. (7)/(12) biases the Laplacian by a fixed ~0.6% at fixed h/dx.
   EXPECT_LT(coarse, 0.015);
   EXPECT_LT(fine, 0.6 * coarse);
@@ -118,6 +119,19 @@ TEST(Species, BalanceClosesInModernWcsph) {
 
 namespace adrsph {
 namespace {
+
+TEST(Species, RklPlanIsStableAndKeepsSuperStepsShort) {
+  // (s^2 + s - 2) / 4 explicit limits per super-step of s stages, at most 4.5 per super-step.
+  for (double ratio : {0.5, 1.0, 3.64, 4.5, 4.6, 32.0, 1000.0}) {
+    const auto p = DiffusionSubcycler::plan(ratio);
+    const double per = ratio / p.supersteps;
+    EXPECT_LE(per, 4.5 + 1e-9) << ratio;
+    EXPECT_GE((p.stages * p.stages + p.stages - 2) / 4.0, per * (1 - 1e-12)) << ratio;
+    EXPECT_LT(((p.stages - 1) * (p.stages - 1) + p.stages - 1 - 2) / 4.0, per) << ratio;
+  }
+  EXPECT_EQ(DiffusionSubcycler::plan(3.64).supersteps, 1);  // Pe = 10, fine: 4 products, not 8
+  EXPECT_EQ(DiffusionSubcycler::plan(3.64).stages, 4);
+}
 
 TEST(Species, SubcycledDiffusionMatchesFullStepDiffusion) {
   // Pe = 10 on the coarse lattice with a short acoustic step: the diffusion limit binds, so

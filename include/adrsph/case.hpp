@@ -73,7 +73,7 @@ struct Case {
 
   struct Output {
     std::vector<double> field_times;  // `output.field_times` [s]; the final state is always written
-    bool progress = true;             // `output.progress`, progress line on a terminal
+    bool progress = true;             // `output.progress`, progress on stderr (see cases/README.md)
   } output;
 
   double u_max() const { return 2.0 * fluid.u_bulk; }

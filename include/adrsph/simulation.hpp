@@ -47,7 +47,7 @@ struct TimeStepLimits {
   double acoustic = 0.0, advective = 0.0, viscous = 0.0, diffusion = 0.0;  // 0: not applicable
   double chosen = 0.0;
   std::string binding;  // which limit set dt
-  int species_substeps = 1;  // diffusion sub-steps per step (time.species_subcycling)
+  int species_substeps = 1;  // RKL2 diffusion stages (sparse products) per step; 1: not split
 };
 
 struct RunResult {

@@ -78,7 +78,10 @@ int run(const RunOptions& o) {
     error(e.what());
     return kExitBadInput;
   }
-  const bool progress = !o.quiet && c.output.progress && ::isatty(STDERR_FILENO);
+  using Mode = CliObserver::ProgressMode;
+  const Mode progress = (o.quiet || !c.output.progress) ? Mode::none
+                        : ::isatty(STDERR_FILENO)      ? Mode::terminal
+                                                       : Mode::log;
   CliObserver observer(stage->path() / "fields.h5", progress);
 
   const auto t0 = std::chrono::steady_clock::now();

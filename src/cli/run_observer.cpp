@@ -22,12 +22,20 @@ std::string format_progress(const Progress& p) {
   return buf;
 }
 
-CliObserver::CliObserver(std::filesystem::path fields_file, bool progress)
+CliObserver::CliObserver(std::filesystem::path fields_file, ProgressMode progress)
     : fields_file_(std::move(fields_file)), progress_(progress) {}
 
 void CliObserver::on_progress(const Progress& p) {
-  if (!progress_) return;
+  if (progress_ == ProgressMode::none) return;
   const auto now = std::chrono::steady_clock::now();
+  if (progress_ == ProgressMode::log) {
+    if (last_print_ == std::chrono::steady_clock::time_point{}) last_print_ = now;
+    if (now - last_print_ < std::chrono::seconds(60)) return;
+    last_print_ = now;
+    std::fprintf(stderr, "progress: %s\n", format_progress(p).c_str());
+    std::fflush(stderr);
+    return;
+  }
   if (printed_ && now - last_print_ < std::chrono::milliseconds(250)) return;
   last_print_ = now;
   // Pad to overwrite a longer previous line.

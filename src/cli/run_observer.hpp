@@ -12,8 +12,13 @@ namespace adrsph::cli {
 
 class CliObserver : public RunObserver {
  public:
-  // `fields_file` is created on the first frame. `progress`: print the progress line.
-  CliObserver(std::filesystem::path fields_file, bool progress);
+  enum class ProgressMode {
+    none,
+    terminal,  // one line rewritten in place (\r) every 0.25 s
+    log,       // a new line every minute: stderr redirected to a file (batch runs)
+  };
+  // `fields_file` is created on the first frame.
+  CliObserver(std::filesystem::path fields_file, ProgressMode progress);
 
   void on_progress(const Progress& p) override;
   void on_fields(const FieldFrame& f) override;
@@ -25,7 +30,7 @@ class CliObserver : public RunObserver {
 
  private:
   std::filesystem::path fields_file_;
-  bool progress_;
+  ProgressMode progress_;
   bool printed_ = false;
   std::chrono::steady_clock::time_point last_print_{};
   std::unique_ptr<FieldsWriter> writer_;

@@ -189,10 +189,10 @@ bool SphSolver::step_impl(double dt) {
   advance<S, false>(dt);
   if constexpr (Split) {
     ScopedPhase timer(timers_, Phase::species);
-    // Sub-steps from this step's size (a final short step needs fewer).
-    const int substeps = std::max(1, static_cast<int>(std::ceil(dt / limits_.diffusion * (1.0 - 1e-12))));
+    // Stages from this step's size (a final short step needs fewer).
+    const auto plan = DiffusionSubcycler::plan(dt / limits_.diffusion);
     ledger_.buffer_exchange +=
-        subcycler_.advance(store_, {kernel_, list_, phys_}, dt, substeps, track_balance_);
+        subcycler_.advance(store_, {kernel_, list_, phys_}, dt, plan, track_balance_);
   }
   {
     ScopedPhase timer(timers_, Phase::integration);

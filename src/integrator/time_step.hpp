@@ -7,11 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "adrsph/case.hpp"
 #include "adrsph/simulation.hpp"
+#include "species/diffusion_subcycling.hpp"
 
 namespace adrsph {
 
@@ -37,17 +40,21 @@ inline TimeStepLimits time_step_limits(const Case& c) {
   consider(l.viscous, "viscous");
   consider(l.diffusion, "diffusion");
   l.chosen = best;
-  // Sub-cycle the species diffusion when it alone holds the step down: the flow (or the
-  // advection) keeps its own step and diffusion takes n sub-steps within it.
+  // Split the species diffusion off when it alone holds the step down: the flow (or the
+  // advection) keeps its own step and diffusion takes one multi-stage RKL2 step within it.
   if (c.time.species_subcycling && c.time.dt == 0 && l.binding == "diffusion") {
     double flow = std::numeric_limits<double>::infinity();
     for (double v : {l.acoustic, l.advective, l.viscous})
       if (v > 0) flow = std::min(flow, v);
     if (std::isfinite(flow)) {
-      const double n = std::ceil(flow / l.diffusion * (1.0 - 1e-12));
-      l.species_substeps = static_cast<int>(std::min(n, 1e9));  // (per full step; see sph_solver)
+      // RKL2 super-steps within each flow step (diffusion_subcycling.hpp).
+      const auto plan = DiffusionSubcycler::plan(std::min(flow / l.diffusion, 1e6));
+      l.species_substeps = plan.supersteps * plan.stages;  // sparse products per step
       l.chosen = flow;
-      l.binding = "flow, species diffusion sub-cycled " + std::to_string(l.species_substeps) + "x";
+      std::ostringstream b;
+      b << "flow; species diffusion limit " << std::setprecision(3) << flow / l.diffusion
+        << "x below it: RKL2, " << plan.supersteps << " x " << plan.stages << " stages";
+      l.binding = b.str();
     }
   }
   if (c.time.dt > 0) {
