@@ -22,31 +22,24 @@ ChannelScene::ChannelScene(const Case& c)
   row_tail_x_.assign(ny, -(inlet_layers_ - 0.5) * dx_);
 }
 
+std::size_t ChannelScene::initial_count() const {
+  std::size_t n = 0;
+  for_each_initial([&](double, double, Kind) { ++n; });
+  return n;
+}
+
 void ChannelScene::initialise(ParticleStore& s) const {
   s.resize(0);
   s.mass = rho0_ * dx_ * dx_;
-  const int nx = static_cast<int>(std::lround(length_ / dx_));
-  const int nwx = static_cast<int>(std::lround((wall_x1_ - wall_x0_) / dx_));
   // Exact room, plus two inflow rows for the feed (re-sorts drop outflow particles as fast).
-  const std::size_t ny = row_y_.size();
-  s.reserve(ny * static_cast<std::size_t>(inlet_layers_ + nx + outlet_layers_ + 2) +
-            2 * static_cast<std::size_t>(wall_layers_ * nwx));
-  for (double yr : row_y_) {
-    const double u = inflow_velocity(yr);
-    for (int i = 0; i < inlet_layers_; ++i)
-      s.push_back(-(i + 0.5) * dx_, yr, u, 0.0, rho0_, c_in_, Kind::inlet);
-    for (int i = 0; i < nx; ++i) s.push_back((i + 0.5) * dx_, yr, u, 0.0, rho0_, c_init_, Kind::fluid);
-    for (int i = 0; i < outlet_layers_; ++i)
-      s.push_back(length_ + (i + 0.5) * dx_, yr, u, 0.0, rho0_, c_init_, Kind::outlet);
-  }
-  for (int k = 0; k < wall_layers_; ++k) {
-    const double yw = half_width_ + (k + 0.5) * dx_;
-    for (int i = 0; i < nwx; ++i) {
-      const double xw = wall_x0_ + (i + 0.5) * dx_;
-      s.push_back(xw, yw, 0.0, 0.0, rho0_, 0.0, Kind::wall);
-      s.push_back(xw, -yw, 0.0, 0.0, rho0_, 0.0, Kind::wall);
+  s.reserve(initial_count() + 2 * row_y_.size());
+  for_each_initial([&](double x, double y, Kind k) {
+    switch (k) {
+      case Kind::inlet: s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_in_, k); break;
+      case Kind::wall: s.push_back(x, y, 0.0, 0.0, rho0_, 0.0, k); break;
+      default: s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_, k); break;
     }
-  }
+  });
 }
 
 void ChannelScene::advance_inflow(double dt) {

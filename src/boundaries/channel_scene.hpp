@@ -4,6 +4,7 @@
 // particles keep their velocity and C (zero gradient) until they are removed.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "adrsph/case.hpp"
@@ -23,6 +24,10 @@ class ChannelScene {
 
   // Fill the store with the initial state: C = c_init, velocity = the analytic profile.
   void initialise(ParticleStore& s) const;
+  // The initial particles of initialise(), in its order, without a store: emit(x, y, kind).
+  template <class Emit>
+  void for_each_initial(Emit&& emit) const;
+  std::size_t initial_count() const;
 
   // Bounding box that holds every particle that is not lost (for the cell grid).
   double xmin() const { return wall_x0_; }
@@ -55,5 +60,24 @@ class ChannelScene {
   std::vector<double> row_y_;       // inflow rows
   std::vector<double> row_tail_x_;  // x of the most upstream inlet particle of each row
 };
+
+template <class Emit>
+void ChannelScene::for_each_initial(Emit&& emit) const {
+  const int nx = static_cast<int>(std::lround(length_ / dx_));
+  for (double yr : row_y_) {
+    for (int i = 0; i < inlet_layers_; ++i) emit(-(i + 0.5) * dx_, yr, Kind::inlet);
+    for (int i = 0; i < nx; ++i) emit((i + 0.5) * dx_, yr, Kind::fluid);
+    for (int i = 0; i < outlet_layers_; ++i) emit(length_ + (i + 0.5) * dx_, yr, Kind::outlet);
+  }
+  const int nwx = static_cast<int>(std::lround((wall_x1_ - wall_x0_) / dx_));
+  for (int k = 0; k < wall_layers_; ++k) {
+    const double yw = half_width_ + (k + 0.5) * dx_;
+    for (int i = 0; i < nwx; ++i) {
+      const double xw = wall_x0_ + (i + 0.5) * dx_;
+      emit(xw, yw, Kind::wall);
+      emit(xw, -yw, Kind::wall);
+    }
+  }
+}
 
 }  // namespace adrsph

@@ -9,6 +9,7 @@
 
 #include "adrsph/simulation.hpp"
 #include "analysis/steady_state.hpp"
+#include "boundaries/channel_scene.hpp"
 #include "integrator/sph_solver.hpp"
 
 namespace adrsph {
@@ -48,7 +49,9 @@ StationTable stations_from(const ProbeTable& p, double length) {
 // time.warm_start: solve the species in the prescribed (analytic) flow to steady state, which
 // costs little (no momentum, no acoustic step), and hand its C field to the full run: the
 // WCSPH run then starts near its own steady state instead of from C = c_init.
-void warm_start(const Case& c, SphSolver& target, RunResult& result) {
+// Returns the initial C of every particle (ChannelScene::for_each_initial order). The
+// prescribed-flow solver is gone before the full run's solver is built: one solver in memory.
+std::vector<double> warm_start(const Case& c, RunResult& result) {
   const double wall0 = omp_get_wtime();
   Case pre = c;
   pre.flow = Flow::prescribed;
@@ -70,17 +73,29 @@ void warm_start(const Case& c, SphSolver& target, RunResult& result) {
   }
   solver.sync_for_probes();
   const ProbeSampler from = solver.sampler();
-  ParticleStore& p = target.particles();
+  std::vector<double> x, y, field;
+  std::vector<Kind> kind;
+  ChannelScene(c).for_each_initial([&](double px, double py, Kind k) {
+    x.push_back(px);
+    y.push_back(py);
+    kind.push_back(k);
+  });
+  field.resize(x.size());
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.kind[i] == static_cast<std::uint8_t>(Kind::fluid) ||
-        p.kind[i] == static_cast<std::uint8_t>(Kind::outlet))
-      p.c[i] = from.concentration_at(p.x[i], p.y[i]);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    switch (kind[i]) {
+      case Kind::fluid:
+      case Kind::outlet: field[i] = from.concentration_at(x[i], y[i]); break;
+      case Kind::inlet: field[i] = c.species.c_in; break;
+      default: field[i] = 0.0; break;  // walls carry no species
+    }
+  }
   result.warm_started = true;
   result.warm_start_t = solver.time();
   result.warm_start_steps = solver.steps();
   result.warm_start_steady = steady.steady();
   result.warm_start_wall_s = omp_get_wtime() - wall0;
+  return field;
 }
 
 }  // namespace
@@ -88,8 +103,8 @@ void warm_start(const Case& c, SphSolver& target, RunResult& result) {
 RunResult run_simulation(const Case& c, RunObserver& observer) {
   RunResult result;
   const double wall_start = omp_get_wtime();
-  SphSolver solver(c);
-  if (c.time.warm_start && c.flow == Flow::wcsph) warm_start(c, solver, result);
+  const bool warm = c.time.warm_start && c.flow == Flow::wcsph;
+  SphSolver solver = warm ? SphSolver(c, warm_start(c, result)) : SphSolver(c);
   const double wall_steps_start = omp_get_wtime();
   result.dt = solver.dt_limits();
   const double dt = result.dt.chosen;

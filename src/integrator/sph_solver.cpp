@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "boundaries/boundary_extrapolation.hpp"
 #include "integrator/time_step.hpp"
@@ -16,7 +18,10 @@ constexpr auto kFluid = static_cast<std::uint8_t>(Kind::fluid);
 constexpr auto kWall = static_cast<std::uint8_t>(Kind::wall);
 }  // namespace
 
-SphSolver::SphSolver(const Case& c) : case_(c), scene_(c), kernel_(c.h()) {
+SphSolver::SphSolver(const Case& c) : SphSolver(c, {}) {}
+
+SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
+    : case_(c), scene_(c), kernel_(c.h()) {
   const double h = c.h();
   phys_.mass = c.fluid.rho0 * c.particles.dx * c.particles.dx;
   phys_.eta2 = 0.01 * h * h;
@@ -50,6 +55,13 @@ SphSolver::SphSolver(const Case& c) : case_(c), scene_(c), kernel_(c.h()) {
     bind<ModernScheme, false>(split);
 
   scene_.initialise(store_);
+  if (!initial_c.empty()) {
+    if (initial_c.size() != store_.size())
+      throw std::invalid_argument("initial concentration field has " +
+                                  std::to_string(initial_c.size()) + " values for " +
+                                  std::to_string(store_.size()) + " particles");
+    for (std::size_t i = 0; i < store_.size(); ++i) store_.c[i] = initial_c[i];
+  }
   for (std::size_t i = 0; i < store_.size(); ++i) store_.p[i] = phys_.eos.p_background;
   rebuild();
 }

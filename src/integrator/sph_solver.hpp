@@ -30,6 +30,9 @@ struct SpeciesLedger {
 class SphSolver {
  public:
   explicit SphSolver(const Case& c);
+  // Start from the concentration `initial_c` instead of c_init: one value per initial particle
+  // in ChannelScene::for_each_initial() order (time.warm_start).
+  SphSolver(const Case& c, std::span<const double> initial_c);
 
   // One explicit midpoint step of size dt. Returns false (and restores the state at the start
   // of the step) when a guard trips; failure() then says why and what to change.
