@@ -57,6 +57,8 @@ std::vector<double> warm_start(const Case& c, RunResult& result) {
   pre.flow = Flow::prescribed;
   pre.time.cfl = std::max(c.time.cfl, 1.0);  // advective limit: particles move <= h per step
   pre.time.dt = 0.0;
+  // Steps of up to h make the lists age fast: a larger skin pays (perf/README.md, 3.4).
+  pre.particles.skin = std::max(c.particles.skin, 0.2);
   SphSolver solver(pre);
   const double dt = solver.dt_limits().chosen;
   SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window, std::max(c.species.c_in, 1e-300));
