@@ -76,7 +76,8 @@ TEST(NeighbourList, HoldsExactlyThePairsWithinTheCutoffPaddedToWholeVectors) {
       if (i == j) continue;
       const bool inside = cloud.distance(i, j) < kCutoff;
       within += inside;
-      EXPECT_EQ(inside, listed.count({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)}) == 1)
+      EXPECT_EQ(inside,
+                listed.count({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)}) == 1)
           << "pair " << i << ", " << j << " at distance " << cloud.distance(i, j);
     }
   }

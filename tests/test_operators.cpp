@@ -26,7 +26,8 @@ void for_each_lattice_neighbour(double x0, double y0,
 TEST(Kernel, LatticeSumIsOne) {
   const QuinticKernel w(kDx);
   double sum = w.value(0.0) * kDx * kDx;
-  for_each_lattice_neighbour(0, 0, [&](double x, double y) { sum += w.value(std::hypot(x, y)) * kDx * kDx; });
+  for_each_lattice_neighbour(
+      0, 0, [&](double x, double y) { sum += w.value(std::hypot(x, y)) * kDx * kDx; });
   EXPECT_NEAR(sum, 1.0, 1e-3);
 }
 

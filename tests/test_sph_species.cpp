@@ -66,8 +66,9 @@ TEST(Species, GaussianDiffusionMatchesAnalyticSolution) {
   std::printf("Gaussian diffusion, max error / peak: dx = 0.25: %.3f%%, dx = 0.125: %.3f%%\n",
               100 * coarse, 100 * fine);
   // Stated tolerance: 1.5% of the peak at s0 = 4 dx, and the error must fall on refinement.
-  // Measured: 1.15% and 0.50% (RKL2 diffusion steps; 1.05% and 0.49% with midpoint sub-steps), about first order: eta = 0.1 h scales with h, so the eta^2
-  // regularisation of eqs. (7)/(12) biases the Laplacian by a fixed ~0.6% at fixed h/dx.
+  // Measured: 1.15% and 0.50% (RKL2 diffusion steps; 1.05% and 0.49% with midpoint sub-steps),
+  // about first order: eta = 0.1 h scales with h, so the eta^2 regularisation of eqs. (7)/(12)
+  // biases the Laplacian by a fixed ~0.6% at fixed h/dx.
   EXPECT_LT(coarse, 0.015);
   EXPECT_LT(fine, 0.6 * coarse);
 }
@@ -92,10 +93,11 @@ double species_balance_defect(Scheme scheme, Flow flow, double t_end) {
   const auto& l = solver.species_ledger();
   const double change = solver.species_inventory() - i0;
   const double budget = l.inflow - l.outflow + l.buffer_exchange - l.reaction;
-  std::printf("%s/%s: inflow %.5g outflow %.5g exchange %.5g reaction %.5g | change %.6g vs "
-              "budget %.6g\n",
-              to_string(scheme), to_string(flow), l.inflow, l.outflow, l.buffer_exchange,
-              l.reaction, change, budget);
+  std::printf(
+      "%s/%s: inflow %.5g outflow %.5g exchange %.5g reaction %.5g | change %.6g vs "
+      "budget %.6g\n",
+      to_string(scheme), to_string(flow), l.inflow, l.outflow, l.buffer_exchange, l.reaction,
+      change, budget);
   EXPECT_GT(l.inflow, 0.0);
   EXPECT_GT(l.outflow, 0.0);
   EXPECT_GT(l.reaction, 0.0);
@@ -169,8 +171,9 @@ TEST(Species, SubcycledDiffusionMatchesFullStepDiffusion) {
   double worst = 0.0;
   for (std::size_t i = 0; i < sub.x_mm.size(); ++i)
     if (sub.x_mm[i] <= 20.0) worst = std::max(worst, std::fabs(sub.c_mean[i] - full.c_mean[i]));
-  std::printf("sub-cycled (%d sub-steps) vs full-step diffusion: max section-average difference %.2e\n",
-              n_sub, worst);
+  std::printf(
+      "sub-cycled (%d sub-steps) vs full-step diffusion: max section-average difference %.2e\n",
+      n_sub, worst);
   EXPECT_LT(worst, 2e-3);
 }
 

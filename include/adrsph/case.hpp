@@ -14,39 +14,39 @@ enum class Scheme { modern, conventional };
 enum class Flow { wcsph, prescribed };
 
 struct Case {
-  std::string name;                 // `name`
-  std::filesystem::path source;     // the case file it came from (empty when built in code)
-  Scheme scheme = Scheme::modern;   // `scheme` = "modern" | "conventional"
-  Flow flow = Flow::wcsph;          // `flow` = "wcsph" | "prescribed"
+  std::string name;                // `name`
+  std::filesystem::path source;    // the case file it came from (empty when built in code)
+  Scheme scheme = Scheme::modern;  // `scheme` = "modern" | "conventional"
+  Flow flow = Flow::wcsph;         // `flow` = "wcsph" | "prescribed"
 
   struct Geometry {
-    double length = 100.0;     // `geometry.length` [mm], channel x in [0, length]
-    double half_width = 5.0;   // `geometry.half_width` [mm], y in [-R, R]
+    double length = 100.0;    // `geometry.length` [mm], channel x in [0, length]
+    double half_width = 5.0;  // `geometry.half_width` [mm], y in [-R, R]
   } geometry;
 
   struct Particles {
-    double dx = 0.25;          // `particles.dx` [mm], lattice spacing; h = dx
-    int wall_layers = 3;       // `particles.wall_layers`, dummy layers (>= 3 for support 3h)
-    int inlet_layers = 7;      // `particles.inlet_layers`, inflow buffer depth in dx
-    int outlet_layers = 4;     // `particles.outlet_layers`, outflow buffer depth in dx
-    double skin = 0.05;        // `particles.skin`, neighbour-list skin as a fraction of 3h
+    double dx = 0.25;       // `particles.dx` [mm], lattice spacing; h = dx
+    int wall_layers = 3;    // `particles.wall_layers`, dummy layers (>= 3 for support 3h)
+    int inlet_layers = 7;   // `particles.inlet_layers`, inflow buffer depth in dx
+    int outlet_layers = 4;  // `particles.outlet_layers`, outflow buffer depth in dx
+    double skin = 0.05;     // `particles.skin`, neighbour-list skin as a fraction of 3h
   } particles;
 
   struct Fluid {
-    double rho0 = 1.2;                 // `fluid.rho0` [kg/m^3]
-    double nu = 15.0;                  // `fluid.nu` [mm^2/s]
-    double u_bulk = 100.0;             // `fluid.u_bulk` [mm/s]; u_max = 2 u_bulk (spec 1)
-    double c0_factor = 10.0;           // `fluid.c0_factor`, c0 = c0_factor * u_max
-    double gamma = 7.0;                // `fluid.gamma`, Tait exponent
+    double rho0 = 1.2;                   // `fluid.rho0` [kg/m^3]
+    double nu = 15.0;                    // `fluid.nu` [mm^2/s]
+    double u_bulk = 100.0;               // `fluid.u_bulk` [mm/s]; u_max = 2 u_bulk (spec 1)
+    double c0_factor = 10.0;             // `fluid.c0_factor`, c0 = c0_factor * u_max
+    double gamma = 7.0;                  // `fluid.gamma`, Tait exponent
     double background_pressure = 0.025;  // `fluid.background_pressure`, p_b / (rho0 c0^2)
   } fluid;
 
   struct Species {
-    double D = 10.0;       // `species.D` [mm^2/s]
-    double k = 1.462;      // `species.k` [1/s], first-order reaction rate
-    double c_in = 2.0;     // `species.c_in` [mol/m^3], inlet concentration
-    double c_init = 2.0;   // `species.c_init` [mol/m^3], initial concentration
-    bool ale = false;      // `species.ale`, add du . grad C (consistent ALE form, modern only)
+    double D = 10.0;      // `species.D` [mm^2/s]
+    double k = 1.462;     // `species.k` [1/s], first-order reaction rate
+    double c_in = 2.0;    // `species.c_in` [mol/m^3], inlet concentration
+    double c_init = 2.0;  // `species.c_init` [mol/m^3], initial concentration
+    bool ale = false;     // `species.ale`, add du . grad C (consistent ALE form, modern only)
   } species;
 
   struct Modern {
@@ -67,8 +67,9 @@ struct Case {
     double steady_tol = 1e-3;        // `time.steady_tol`, max change of window-mean probes / c_in
     double steady_window = 0.5;      // `time.steady_window` [s], must hold this long
     double average_window = 0.0;     // `time.average_window` [s], probe time average at the end
-    bool warm_start = false;         // `time.warm_start`, start C from the prescribed-flow steady state
-    bool species_subcycling = true;  // `time.species_subcycling`, sub-cycle diffusion below the flow dt
+    bool warm_start = false;  // `time.warm_start`, start C from the prescribed-flow steady state
+    bool species_subcycling =
+        true;  // `time.species_subcycling`, sub-cycle diffusion below the flow dt
   } time;
 
   struct Output {

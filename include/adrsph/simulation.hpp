@@ -46,7 +46,7 @@ class RunObserver {
 struct TimeStepLimits {
   double acoustic = 0.0, advective = 0.0, viscous = 0.0, diffusion = 0.0;  // 0: not applicable
   double chosen = 0.0;
-  std::string binding;  // which limit set dt
+  std::string binding;       // which limit set dt
   int species_substeps = 1;  // RKL2 diffusion stages (sparse products) per step; 1: not split
 };
 
@@ -56,8 +56,8 @@ struct RunResult {
   double t_reached = 0.0;
   long steps = 0;
   double wall_s = 0.0;
-  std::size_t n_particles = 0;   // all particles (fluid + wall + buffers) at the end
-  std::size_t n_fluid = 0;       // fluid particles at the end
+  std::size_t n_particles = 0;        // all particles (fluid + wall + buffers) at the end
+  std::size_t n_fluid = 0;            // fluid particles at the end
   double particle_steps_per_s = 0.0;  // sum over steps of particles / wall time
   long list_rebuilds = 0;             // re-sorts + neighbour-list builds (set-up included)
   double mean_neighbours = 0.0;       // list entries per particle at the last build (skin incl.)
@@ -68,11 +68,12 @@ struct RunResult {
   std::vector<std::pair<std::string, double>> phase_seconds;  // timer name -> seconds
   ProbeTable probes;
   StationTable stations;
-  double average_window = 0.0;  // probes averaged over [t_reached - window, t_reached]; 0: instantaneous
+  double average_window =
+      0.0;  // probes averaged over [t_reached - window, t_reached]; 0: instantaneous
   std::string probe_interpolation;  // how probes were computed (text for run.json)
   // time.warm_start: the prescribed-flow run that gave the initial C field.
   bool warm_started = false;
-  double warm_start_t = 0.0;       // simulated time of the prescribed run
+  double warm_start_t = 0.0;  // simulated time of the prescribed run
   long warm_start_steps = 0;
   double warm_start_wall_s = 0.0;  // included in wall_s
   bool warm_start_steady = false;

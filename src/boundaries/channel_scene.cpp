@@ -35,9 +35,15 @@ void ChannelScene::initialise(ParticleStore& s) const {
   s.reserve(initial_count() + 2 * row_y_.size());
   for_each_initial([&](double x, double y, Kind k) {
     switch (k) {
-      case Kind::inlet: s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_in_, k); break;
-      case Kind::wall: s.push_back(x, y, 0.0, 0.0, rho0_, 0.0, k); break;
-      default: s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_, k); break;
+      case Kind::inlet:
+        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_in_, k);
+        break;
+      case Kind::wall:
+        s.push_back(x, y, 0.0, 0.0, rho0_, 0.0, k);
+        break;
+      default:
+        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_, k);
+        break;
     }
   });
 }
@@ -76,9 +82,8 @@ void ChannelScene::feed_and_drain(ParticleStore& s, std::vector<char>& keep, lon
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Kind>(s.kind[i]);
     if (k == Kind::outlet && (s.x[i] > x_drop || std::fabs(s.y[i]) > half_width_)) keep[i] = 0;
-    if (k == Kind::fluid &&
-        (std::fabs(s.y[i]) > half_width_ || s.x[i] < x_lost || !std::isfinite(s.x[i]) ||
-         !std::isfinite(s.y[i]))) {
+    if (k == Kind::fluid && (std::fabs(s.y[i]) > half_width_ || s.x[i] < x_lost ||
+                             !std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))) {
       keep[i] = 0;
       ++lost;
     }

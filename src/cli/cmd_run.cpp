@@ -80,8 +80,8 @@ int run(const RunOptions& o) {
   }
   using Mode = CliObserver::ProgressMode;
   const Mode progress = (o.quiet || !c.output.progress) ? Mode::none
-                        : ::isatty(STDERR_FILENO)      ? Mode::terminal
-                                                       : Mode::log;
+                        : ::isatty(STDERR_FILENO)       ? Mode::terminal
+                                                        : Mode::log;
   CliObserver observer(stage->path() / "fields.h5", progress);
 
   const auto t0 = std::chrono::steady_clock::now();

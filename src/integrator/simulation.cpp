@@ -61,16 +61,18 @@ std::vector<double> warm_start(const Case& c, RunResult& result) {
   pre.particles.skin = std::max(c.particles.skin, 0.2);
   SphSolver solver(pre);
   const double dt = solver.dt_limits().chosen;
-  SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window, std::max(c.species.c_in, 1e-300));
-  const int n_section = std::max(20, static_cast<int>(std::lround(4.0 * c.geometry.half_width / c.particles.dx)));
+  SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window,
+                             std::max(c.species.c_in, 1e-300));
+  const int n_section =
+      std::max(20, static_cast<int>(std::lround(4.0 * c.geometry.half_width / c.particles.dx)));
   double next_check = c.time.check_interval;
   while (solver.time() < c.time.t_end && !steady.steady()) {
     if (!solver.step(std::min(dt, c.time.t_end - solver.time()))) break;
     if (solver.time() >= next_check) {
       next_check += c.time.check_interval;
       solver.sync_for_probes();
-      steady.update(solver.time(),
-                    solver.sampler().probe_lines(c.geometry.length, c.geometry.half_width, n_section));
+      steady.update(solver.time(), solver.sampler().probe_lines(c.geometry.length,
+                                                                c.geometry.half_width, n_section));
     }
   }
   solver.sync_for_probes();
@@ -87,9 +89,15 @@ std::vector<double> warm_start(const Case& c, RunResult& result) {
   for (std::size_t i = 0; i < x.size(); ++i) {
     switch (kind[i]) {
       case Kind::fluid:
-      case Kind::outlet: field[i] = from.concentration_at(x[i], y[i]); break;
-      case Kind::inlet: field[i] = c.species.c_in; break;
-      default: field[i] = 0.0; break;  // walls carry no species
+      case Kind::outlet:
+        field[i] = from.concentration_at(x[i], y[i]);
+        break;
+      case Kind::inlet:
+        field[i] = c.species.c_in;
+        break;
+      default:
+        field[i] = 0.0;
+        break;  // walls carry no species
     }
   }
   result.warm_started = true;
@@ -111,10 +119,12 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
   result.dt = solver.dt_limits();
   const double dt = result.dt.chosen;
   const double length = c.geometry.length, half_width = c.geometry.half_width;
-  const int n_section = std::max(20, static_cast<int>(std::lround(4.0 * half_width / c.particles.dx)));
+  const int n_section =
+      std::max(20, static_cast<int>(std::lround(4.0 * half_width / c.particles.dx)));
   result.probe_interpolation = probe_interpolation_text(n_section);
 
-  SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window, std::max(c.species.c_in, 1e-300));
+  SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window,
+                             std::max(c.species.c_in, 1e-300));
   std::deque<std::pair<double, ProbeTable>> window;
   std::vector<double> field_times = c.output.field_times;
   std::sort(field_times.begin(), field_times.end());

@@ -115,15 +115,17 @@ bool SphSolver::needs_rebuild() {
   if (2.0 * moved_abs_ <= skin_) return false;  // no particle moved skin/2: nothing to check
   ScopedPhase timer(timers_, Phase::neighbours);
   const std::size_t n = store_.size();
-  return monitor_.max_relative(grid_, std::span(store_.x).first(n),
-                               std::span(store_.y).first(n)) > skin_;
+  return monitor_.max_relative(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n)) >
+         skin_;
 }
 
 void SphSolver::sync_for_probes() {
   if (2.0 * moved_abs_ > skin_) rebuild();
 }
 
-void SphSolver::evaluate() { (this->*eval_fn_)(); }
+void SphSolver::evaluate() {
+  (this->*eval_fn_)();
+}
 
 template <class S, bool Ale, bool Split>
 void SphSolver::evaluate_impl() {
@@ -280,17 +282,16 @@ bool SphSolver::check_state(double dt) {
   const double vmax = std::sqrt(vmax2);
   std::ostringstream m;
   if (bad > 0) {
-    m << bad << " particle(s) with non-finite state (NaN or inf) at t = " << t_ + dt
-      << " s, step " << steps_ + 1 << ", dt = " << dt << " s. ";
+    m << bad << " particle(s) with non-finite state (NaN or inf) at t = " << t_ + dt << " s, step "
+      << steps_ + 1 << ", dt = " << dt << " s. ";
   } else if (case_.flow == Flow::wcsph && vmax > 0.5 * case_.c0()) {
     m << "particle speed " << vmax << " mm/s exceeds 0.5 c0 = " << 0.5 * case_.c0()
       << " mm/s at t = " << t_ + dt << " s, step " << steps_ + 1
       << ": the flow blew up, weak compressibility no longer holds. ";
   } else if (case_.flow == Flow::wcsph && drho_max > 0.2) {
-    m << "density deviates by " << 100 * drho_max << "% from rho0 at t = " << t_ + dt
-      << " s, step " << steps_ + 1 << ": the flow blew up. ";
-  }
-  else if (c_dev > 0.5 * c_max) {
+    m << "density deviates by " << 100 * drho_max << "% from rho0 at t = " << t_ + dt << " s, step "
+      << steps_ + 1 << ": the flow blew up. ";
+  } else if (c_dev > 0.5 * c_max) {
     m << "concentration left the physical band [0, " << c_max << "] by " << c_dev
       << " mol/m^3 at t = " << t_ + dt << " s, step " << steps_ + 1
       << ": the species step is unstable. ";
@@ -298,8 +299,8 @@ bool SphSolver::check_state(double dt) {
   if (!m.str().empty()) {
     m << "The time step is above the stable limit for this case: lower time.cfl (now "
       << case_.time.cfl << ")";
-    if (case_.time.dt > 0) m << " or time.dt (now " << case_.time.dt << " s, limit "
-                             << limits_.acoustic << " s)";
+    if (case_.time.dt > 0)
+      m << " or time.dt (now " << case_.time.dt << " s, limit " << limits_.acoustic << " s)";
     m << ", or time.diffusion_number (now " << case_.time.diffusion_number << ").";
     failure_ = m.str();
     // Restore the last good state (start of this step; walls were not advanced).
@@ -319,7 +320,9 @@ bool SphSolver::check_state(double dt) {
   return true;
 }
 
-bool SphSolver::step(double dt) { return (this->*step_fn_)(dt); }
+bool SphSolver::step(double dt) {
+  return (this->*step_fn_)(dt);
+}
 
 FieldFrame SphSolver::frame(std::vector<double>& pressure_pa) const {
   const std::size_t n = store_.size();

@@ -68,11 +68,15 @@ class SphSolver {
   void sync_for_probes();
 
  private:
-  template <class S, bool Ale, bool Split> bool step_impl(double dt);
-  template <class S, bool Ale, bool Split> void evaluate_impl();
-  template <class S, bool Ale> void bind(bool split);
+  template <class S, bool Ale, bool Split>
+  bool step_impl(double dt);
+  template <class S, bool Ale, bool Split>
+  void evaluate_impl();
+  template <class S, bool Ale>
+  void bind(bool split);
   // state = saved state + a * rates; Save: first stage, also saves the start state
-  template <class S, bool Save> void advance(double a);
+  template <class S, bool Save>
+  void advance(double a);
   bool check_state(double dt);
 
   Case case_;

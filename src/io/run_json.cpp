@@ -47,9 +47,12 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["particle_steps_per_second"] = number(r.particle_steps_per_s);
   j["list_rebuilds"] = r.list_rebuilds;
   j["mean_neighbours"] = number(r.mean_neighbours);
-  j["dt"] = Json{{"chosen", number(r.dt.chosen)},     {"binding", r.dt.binding},
-                 {"acoustic", number(r.dt.acoustic)}, {"advective", number(r.dt.advective)},
-                 {"viscous", number(r.dt.viscous)},   {"diffusion", number(r.dt.diffusion)},
+  j["dt"] = Json{{"chosen", number(r.dt.chosen)},
+                 {"binding", r.dt.binding},
+                 {"acoustic", number(r.dt.acoustic)},
+                 {"advective", number(r.dt.advective)},
+                 {"viscous", number(r.dt.viscous)},
+                 {"diffusion", number(r.dt.diffusion)},
                  {"species_substeps", r.dt.species_substeps}};
   j["steady"] = r.steady;
   j["t_steady"] = r.steady ? number(r.t_steady) : Json(nullptr);

@@ -43,13 +43,13 @@ struct QuinticKernel {
            (T(-5) * t3_2 * t3_2 + T(30) * t2_2 * t2_2 - T(75) * t1_2 * t1_2);
   }
   template <class T>
-  static T positive_t(T v) { return T(0.5) * (v + std::fabs(v)); }
+  static T positive_t(T v) {
+    return T(0.5) * (v + std::fabs(v));
+  }
 
   // (dW/dr) / r, so that grad_i W_ij = F(r_ij) * (r_i - r_j). Zero beyond the support and
   // finite at r = 0 (dW/dr vanishes there).
-  double gradient_factor(double r) const {
-    return derivative(r) / (r + 1e-30);
-  }
+  double gradient_factor(double r) const { return derivative(r) / (r + 1e-30); }
 };
 
 }  // namespace adrsph

@@ -54,7 +54,8 @@ double DisplacementMonitor::max_relative(const CellGrid& grid, std::span<const d
       for (const auto& o : stencil) {
         const int b = grid.rank(cx + o[0], cy + o[1]);
         if (b < 0 || box[4 * b] > box[4 * b + 1]) continue;
-        const double sx = std::max(box[4 * a + 1], box[4 * b + 1]) - std::min(box[4 * a], box[4 * b]);
+        const double sx =
+            std::max(box[4 * a + 1], box[4 * b + 1]) - std::min(box[4 * a], box[4 * b]);
         const double sy =
             std::max(box[4 * a + 3], box[4 * b + 3]) - std::min(box[4 * a + 2], box[4 * b + 2]);
         worst2 = std::max(worst2, sx * sx + sy * sy);

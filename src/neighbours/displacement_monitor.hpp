@@ -21,8 +21,7 @@ class DisplacementMonitor {
   // At a build: remember the positions (the particles are sorted by `grid` cell).
   void reset(std::span<const double> x, std::span<const double> y);
   // Upper bound of |d_i - d_j| over all pairs of particles in the same or adjacent cells.
-  double max_relative(const CellGrid& grid, std::span<const double> x,
-                      std::span<const double> y);
+  double max_relative(const CellGrid& grid, std::span<const double> x, std::span<const double> y);
 
  private:
   std::vector<float> xb_, yb_;  // build positions (float: the bound adds their rounding)

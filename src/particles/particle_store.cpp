@@ -60,8 +60,8 @@ void ParticleStore::reset_padding() {
   fluid_side[k] = 0.0f;
 }
 
-void ParticleStore::push_back(double px, double py, double pvx, double pvy, double prho,
-                              double pc, Kind k) {
+void ParticleStore::push_back(double px, double py, double pvx, double pvy, double prho, double pc,
+                              Kind k) {
   const std::size_t i = n_;
   resize(n_ + 1);
   x[i] = px;

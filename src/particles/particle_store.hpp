@@ -13,10 +13,10 @@ namespace adrsph {
 
 struct ParticleStore {
   // State (what the integrator advances or the boundaries prescribe).
-  std::vector<double> x, y;    // position [mm]
-  std::vector<double> vx, vy;  // fluid velocity u [mm/s]
-  std::vector<double> rho;     // density [kg/m^3]
-  std::vector<double> c;       // concentration [mol/m^3]
+  std::vector<double> x, y;        // position [mm]
+  std::vector<double> vx, vy;      // fluid velocity u [mm/s]
+  std::vector<double> rho;         // density [kg/m^3]
+  std::vector<double> c;           // concentration [mol/m^3]
   std::vector<std::uint8_t> kind;  // Kind
   // Derived per evaluation, and the rates: single precision. They are recomputed every
   // evaluation from the double state and only ever enter it multiplied by dt, so their

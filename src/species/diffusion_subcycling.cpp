@@ -35,8 +35,8 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
       const double r = std::sqrt(r2) + 1e-30;
       const double lap_weight = kernel.derivative(r) * r / (r2 + eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
-      w[k] = static_cast<float>(species_diffusion_pair<double>(diffusivity, voli, vol[j],
-                                                               lap_weight, 1.0, cm[j]));
+      w[k] = static_cast<float>(
+          species_diffusion_pair<double>(diffusivity, voli, vol[j], lap_weight, 1.0, cm[j]));
     }
   }
 }
@@ -56,8 +56,7 @@ double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
     double sum = 0.0;
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
 #pragma omp simd reduction(+ : sum)
-    for (std::uint32_t k = kb; k < ke; ++k)
-      sum += w[k] * (ci - cc[nb[k]]);
+    for (std::uint32_t k = kb; k < ke; ++k) sum += w[k] * (ci - cc[nb[k]]);
     rate[i] = sum;
     if (track) {  // flux from the buffers, for the species balance (tests, diagnostics)
       double from_buffers = 0.0;
@@ -85,8 +84,8 @@ DiffusionSubcycler::Plan DiffusionSubcycler::plan(double ratio) {
   return p;
 }
 
-double DiffusionSubcycler::advance(ParticleStore& s, const PassContext& ctx, double dt,
-                                   Plan plan, bool track) {
+double DiffusionSubcycler::advance(ParticleStore& s, const PassContext& ctx, double dt, Plan plan,
+                                   bool track) {
   compute_weights(s, ctx);  // the configuration is frozen over the step
   double exchange = 0.0;
   const double h = dt / plan.supersteps;
@@ -107,7 +106,7 @@ double DiffusionSubcycler::superstep(ParticleStore& s, const PassContext& ctx, d
   const double w1 = 4.0 / (static_cast<double>(st) * st + st - 2.0);
   auto b = [](int j) { return j < 2 ? 1.0 / 3.0 : (j * j + j - 2.0) / (2.0 * j * (j + 1.0)); };
   y0_.assign(s.c.begin(), s.c.begin() + static_cast<std::ptrdiff_t>(n));
-  l0_.assign(n, 0.0);    // rates are written for fluid particles only: the rest stays 0
+  l0_.assign(n, 0.0);  // rates are written for fluid particles only: the rest stays 0
   rate_.assign(n, 0.0);
   // Y_j - Y0 = dt sum_k beta_j[k] L(Y_k): the buffer exchange, linear in the rates, follows.
   std::vector<double> e(st, 0.0), beta_m2(st, 0.0), beta_m1(st, 0.0), beta(st, 0.0);
@@ -133,7 +132,8 @@ double DiffusionSubcycler::superstep(ParticleStore& s, const PassContext& ctx, d
     double* out = yj_.data();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
-      out[i] = mu * a1[i] + nu * a2[i] + (1.0 - mu - nu) * y0[i] + mut * dt * r[i] + gt * dt * l0[i];
+      out[i] =
+          mu * a1[i] + nu * a2[i] + (1.0 - mu - nu) * y0[i] + mut * dt * r[i] + gt * dt * l0[i];
     for (int k = 0; k < st; ++k)
       beta[k] = mu * beta_m1[k] + nu * beta_m2[k] + (k == j - 1 ? mut : 0.0) + (k == 0 ? gt : 0.0);
     std::swap(ym2_, ym1_);

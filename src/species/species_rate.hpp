@@ -1,5 +1,6 @@
 // The species equation, eq. (12) (spec section 3):
-//   dC_i/dt = sum_j (m_j rho_i D_i + m_i rho_j D_j)/(rho_i rho_j) (r_ij . grad W)/(r^2+eta^2) (C_i - C_j)
+//   dC_i/dt = sum_j (m_j rho_i D_i + m_i rho_j D_j)/(rho_i rho_j) (r_ij . grad W)/(r^2+eta^2) (C_i
+//   - C_j)
 //           + C_i sum_j V_j u_ij . grad_i W_ij          (Lagrangian form of -C div u)
 //           - k C_i                                      (integrated exactly, species_decay)
 // Optional ALE-consistent term for particles moving with u + du: + du_i . grad C_i.
@@ -13,8 +14,7 @@ namespace adrsph {
 // Walls carry no species (c_mask_j = 0): no flux through them, exactly.
 // `c_ij` = C_i - C_j (taken in double by the callers).
 template <class T>
-inline T species_diffusion_pair(T diffusivity, T vol_i, T vol_j, T lap_weight, T c_ij,
-                                T c_mask_j) {
+inline T species_diffusion_pair(T diffusivity, T vol_i, T vol_j, T lap_weight, T c_ij, T c_mask_j) {
   return c_mask_j * diffusivity * (vol_i + vol_j) * lap_weight * c_ij;
 }
 
@@ -25,7 +25,9 @@ inline T species_dilatation_pair(T vol_j, T u_dot_gradw) {
 }
 
 // First-order reaction over a step, exact: C <- C exp(-k dt).
-inline double species_decay(double k, double dt) { return std::exp(-k * dt); }
+inline double species_decay(double k, double dt) {
+  return std::exp(-k * dt);
+}
 
 // Moles exchanged with the inflow/outflow buffers by diffusion (the only species flux
 // across the open boundaries besides the particles that cross them), summed over the fluid
