@@ -158,14 +158,7 @@ void SphSolver::advance(double a) {
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t k = s.kind[i];
     if (k == kWall) continue;
-    if constexpr (Save) {
-      s.x0[i] = s.x[i];
-      s.y0[i] = s.y[i];
-      s.vx0[i] = s.vx[i];
-      s.vy0[i] = s.vy[i];
-      s.rho0[i] = s.rho[i];
-      s.c0[i] = s.c[i];
-    }
+    if constexpr (Save) s.save_start(i);
     if (k == kFluid && S::momentum) {
       // Midpoint: positions move with the current (transport) velocity, then u is updated.
       double tx = s.vx[i], ty = s.vy[i];
@@ -304,15 +297,8 @@ bool SphSolver::check_state(double dt) {
     m << ", or time.diffusion_number (now " << case_.time.diffusion_number << ").";
     failure_ = m.str();
     // Restore the last good state (start of this step; walls were not advanced).
-    for (std::size_t i = 0; i < n; ++i) {
-      if (s.kind[i] == kWall) continue;
-      s.x[i] = s.x0[i];
-      s.y[i] = s.y0[i];
-      s.vx[i] = s.vx0[i];
-      s.vy[i] = s.vy0[i];
-      s.rho[i] = s.rho0[i];
-      s.c[i] = s.c0[i];
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.kind[i] != kWall) s.restore_start(i);
     return false;
   }
   const double tmax = std::sqrt(tmax2);

@@ -20,13 +20,17 @@ struct QuinticKernel {
     support = 3.0 * h;
   }
 
-  static double positive(double v) { return 0.5 * (v + std::fabs(v)); }
+  // (x)_+ = (x + |x|) / 2, branch-free (see the file comment).
+  template <class T>
+  static T positive(T v) {
+    return T(0.5) * (v + std::fabs(v));
+  }
 
   // W(r). T = float for the single-precision passes.
   template <class T = double>
   T value(T r) const {
     const T q = r * static_cast<T>(inv_h);
-    const T t3 = positive_t(T(3) - q), t2 = positive_t(T(2) - q), t1 = positive_t(T(1) - q);
+    const T t3 = positive(T(3) - q), t2 = positive(T(2) - q), t1 = positive(T(1) - q);
     const T t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
     return static_cast<T>(sigma) *
            (t3_2 * t3_2 * t3 - T(6) * t2_2 * t2_2 * t2 + T(15) * t1_2 * t1_2 * t1);
@@ -37,14 +41,10 @@ struct QuinticKernel {
   template <class T = double>
   T derivative(T r) const {
     const T q = r * static_cast<T>(inv_h);
-    const T t3 = positive_t(T(3) - q), t2 = positive_t(T(2) - q), t1 = positive_t(T(1) - q);
+    const T t3 = positive(T(3) - q), t2 = positive(T(2) - q), t1 = positive(T(1) - q);
     const T t3_2 = t3 * t3, t2_2 = t2 * t2, t1_2 = t1 * t1;
     return static_cast<T>(sigma * inv_h) *
            (T(-5) * t3_2 * t3_2 + T(30) * t2_2 * t2_2 - T(75) * t1_2 * t1_2);
-  }
-  template <class T>
-  static T positive_t(T v) {
-    return T(0.5) * (v + std::fabs(v));
   }
 
   // (dW/dr) / r, so that grad_i W_ij = F(r_ij) * (r_i - r_j). Zero beyond the support and

@@ -51,6 +51,23 @@ struct ParticleStore {
   // smaller than size(): particles not listed are removed.
   void permute(std::span<const std::uint32_t> order);
   void reset_padding();
+  // Explicit midpoint: keep particle i's start-of-step state, or go back to it.
+  void save_start(std::size_t i) {
+    x0[i] = x[i];
+    y0[i] = y[i];
+    vx0[i] = vx[i];
+    vy0[i] = vy[i];
+    rho0[i] = rho[i];
+    c0[i] = c[i];
+  }
+  void restore_start(std::size_t i) {
+    x[i] = x0[i];
+    y[i] = y0[i];
+    vx[i] = vx0[i];
+    vy[i] = vy0[i];
+    rho[i] = rho0[i];
+    c[i] = c0[i];
+  }
   // Keep the masks in step with kind[i] after a kind change.
   void set_kind(std::size_t i, Kind k) {
     kind[i] = static_cast<std::uint8_t>(k);
