@@ -26,6 +26,16 @@ std::vector<double> station_x_positions(double length);
 
 void write_probes_csv(const std::filesystem::path& file, const ProbeTable& t);
 void write_stations_csv(const std::filesystem::path& file, const StationTable& t);
+// One probe check of a run: the section averages at the stations and the steady test's
+// change measure (infinity until it has enough samples).
+struct HistoryRow {
+  double t = 0.0;
+  std::vector<double> stations;  // C_mean at station_x_positions()
+  double steady_change = 0.0;
+};
+// history.csv: header t_s,C_mean_x25,C_mean_x50,C_mean_x100,steady_change; one row per check
+// (steady_change empty while undefined).
+void write_history_csv(const std::filesystem::path& file, const std::vector<HistoryRow>& rows);
 // Readers throw std::runtime_error naming the file and the line on bad content.
 ProbeTable read_probes_csv(const std::filesystem::path& file);
 StationTable read_stations_csv(const std::filesystem::path& file);

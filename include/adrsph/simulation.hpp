@@ -77,6 +77,8 @@ struct RunResult {
   long warm_start_steps = 0;
   double warm_start_wall_s = 0.0;  // included in wall_s
   bool warm_start_steady = false;
+  // Section averages at the stations at every probe check: the approach to steady state.
+  std::vector<HistoryRow> history;
 };
 
 // Runs the case. Numerical failures (NaN, blow-up, lost particles) do not throw: they end

@@ -50,6 +50,10 @@ std::vector<std::string> write_outputs(const std::filesystem::path& dir, const C
     write_stations_csv(dir / "stations.csv", r.stations);
     files.push_back("stations.csv");
   }
+  if (!r.history.empty()) {
+    write_history_csv(dir / "history.csv", r.history);
+    files.push_back("history.csv");
+  }
   if (!frames.empty()) {
     write_fields_xdmf(dir / "fields.xmf", "fields.h5", frames);
     files.push_back("fields.h5");

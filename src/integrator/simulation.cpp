@@ -176,6 +176,7 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
       pr.steps_per_s = pr.step / std::max(pr.wall_s, 1e-9);
       pr.eta_s = (c.time.t_end - t) / dt / std::max(pr.steps_per_s, 1e-9);
       pr.steady_change = steady.update(t, last_probes);
+      result.history.push_back({t, stations_from(last_probes, length).c_mean, pr.steady_change});
       observer.on_progress(pr);
       if (steady.steady() && c.time.stop_when_steady) break;
     }

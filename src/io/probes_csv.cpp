@@ -120,6 +120,22 @@ void write_stations_csv(const std::filesystem::path& file, const StationTable& t
   write_text(file, text);
 }
 
+void write_history_csv(const std::filesystem::path& file, const std::vector<HistoryRow>& rows) {
+  std::string text = "t_s,C_mean_x25,C_mean_x50,C_mean_x100,steady_change\n";
+  for (const HistoryRow& r : rows) {
+    if (r.stations.size() != 3)
+      throw std::runtime_error(file.string() + ": a history row needs 3 station values");
+    const double row[] = {r.t, r.stations[0], r.stations[1], r.stations[2]};
+    text += format_row(row, 4) + ",";
+    if (std::isfinite(r.steady_change)) {
+      const double ch[] = {r.steady_change};
+      text += format_row(ch, 1);
+    }
+    text += "\n";
+  }
+  write_text(file, text);
+}
+
 ProbeTable read_probes_csv(const std::filesystem::path& file) {
   ProbeTable t;
   read_table(file, kProbesHeader, 5, [&](const std::vector<double>& v) {
