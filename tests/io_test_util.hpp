@@ -61,12 +61,20 @@ struct CommandResult {
   std::string out, err;
 };
 
-// Runs the built adrsph with `args` (already shell-quoted where needed) inside `dir`.
-inline CommandResult run_adrsph(const std::string& args, const std::filesystem::path& dir) {
+// Runs a shell command line inside `dir` (stdout and stderr captured).
+inline CommandResult run_shell(const std::string& command, const std::filesystem::path& dir) {
   const auto out = dir / "stdout.txt";
   const auto err = dir / "stderr.txt";
-  const std::string cmd = "cd '" + dir.string() + "' && '" + std::string(ADRSPH_BINARY) + "' " +
-                          args + " > '" + out.string() + "' 2> '" + err.string() + "' < /dev/null";
+  // Built by appends: GCC 12 -Wrestrict misfires on long chains of string + string.
+  std::string cmd = "cd '";
+  cmd += dir.string();
+  cmd += "' && ( ";
+  cmd += command;
+  cmd += " ) > '";
+  cmd += out.string();
+  cmd += "' 2> '";
+  cmd += err.string();
+  cmd += "' < /dev/null";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -75,6 +83,15 @@ inline CommandResult run_adrsph(const std::string& args, const std::filesystem::
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+// Runs the built adrsph with `args` (already shell-quoted where needed) inside `dir`.
+inline CommandResult run_adrsph(const std::string& args, const std::filesystem::path& dir) {
+  std::string cmd(1, '\'');
+  cmd += ADRSPH_BINARY;
+  cmd += "' ";
+  cmd += args;
+  return run_shell(cmd, dir);
 }
 
 // The keys of run.json that later tools read (README, output contract).
@@ -105,6 +122,10 @@ inline const std::vector<const char*> kRunJsonKeys = {"case",
                                                       "probe_interpolation",
                                                       "average_window",
                                                       "phase_seconds",
-                                                      "stations"};
+                                                      "stations",
+                                                      "ale",
+                                                      "peak_rss_bytes",
+                                                      "restarts",
+                                                      "steady_criterion"};
 
 }  // namespace adrsph::test

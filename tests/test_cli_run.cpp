@@ -32,10 +32,10 @@ void expect_old_output(const fs::path& out) {
   EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator{}), 2);
 }
 
-// No DIR.partial-* left next to the output directory.
+// No DIR.partial left next to the output directory.
 void expect_no_staging(const fs::path& parent) {
   for (const auto& e : fs::directory_iterator(parent))
-    EXPECT_EQ(e.path().filename().string().find(".partial-"), std::string::npos) << e.path();
+    EXPECT_EQ(e.path().filename().string().find(".partial"), std::string::npos) << e.path();
 }
 
 TEST(CliRun, TypoInKeyExits2AndLeavesOutputAlone) {

@@ -99,7 +99,7 @@ TEST_F(OutputContract, SummaryAndNoStaging) {
   EXPECT_THAT(result_.out, HasSubstr("x = 25"));
   EXPECT_THAT(result_.err, ::testing::Not(HasSubstr("\r")));  // no progress line off a terminal
   for (const auto& e : fs::directory_iterator(dir_->path()))
-    EXPECT_EQ(e.path().filename().string().find(".partial-"), std::string::npos) << e.path();
+    EXPECT_EQ(e.path().filename().string().find(".partial"), std::string::npos) << e.path();
 }
 
 }  // namespace

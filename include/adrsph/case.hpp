@@ -66,6 +66,7 @@ struct Case {
     bool stop_when_steady = true;    // `time.stop_when_steady`
     double steady_tol = 1e-3;        // `time.steady_tol`, max change of window-mean probes / c_in
     double steady_window = 0.5;      // `time.steady_window` [s], must hold this long
+    double steady_sweep_tol = 1e-4;  // `time.steady_sweep_tol`, cold-start transient bound; 0 = off
     double average_window = 0.0;     // `time.average_window` [s], probe time average at the end
     bool warm_start = false;  // `time.warm_start`, start C from the prescribed-flow steady state
     bool species_subcycling =
@@ -75,6 +76,7 @@ struct Case {
   struct Output {
     std::vector<double> field_times;  // `output.field_times` [s]; the final state is always written
     bool progress = true;             // `output.progress`, progress on stderr (see cases/README.md)
+    double checkpoint_minutes = 10.0;  // `output.checkpoint_minutes` [min] of wall time; 0 = never
   } output;
 
   double u_max() const { return 2.0 * fluid.u_bulk; }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "adrsph/case.hpp"
+#include "adrsph/checkpoint.hpp"
 #include "adrsph/probes.hpp"
 
 namespace adrsph {
@@ -35,12 +36,32 @@ struct Progress {
   double steady_change = 0.0;  // last probe change measure (see time.steady_tol)
 };
 
+// What the observer asks of the run after a step (checkpoint/restart).
+enum class CheckpointRequest {
+  none,
+  write,           // write a checkpoint and go on (periodic checkpoints)
+  write_and_stop,  // write a checkpoint and end the run as "interrupted" (a signal)
+};
+
 class RunObserver {
  public:
   virtual ~RunObserver() = default;
   virtual void on_progress(const Progress&) {}
   // Called at each requested output time, at the end, and with the last good state on failure.
   virtual void on_fields(const FieldFrame&) {}
+  // Asked after every step, with the wall time of the run so far. A request is served at the
+  // next neighbour-list rebuild (every few tens of steps), where a snapshot is exact.
+  virtual CheckpointRequest checkpoint_request(double /*wall_s*/) {
+    return CheckpointRequest::none;
+  }
+  virtual void on_checkpoint(const RunCheckpoint&) {}
+};
+
+// Thrown when the observer asks to stop before the run has a state worth a checkpoint
+// (during the warm start).
+class RunInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 struct TimeStepLimits {
@@ -51,7 +72,7 @@ struct TimeStepLimits {
 };
 
 struct RunResult {
-  std::string status = "ok";  // "ok" | "failed"
+  std::string status = "ok";  // "ok" | "failed" | "interrupted" (checkpoint written)
   std::string message;        // why it failed, and what to change
   double t_reached = 0.0;
   long steps = 0;
@@ -79,10 +100,17 @@ struct RunResult {
   bool warm_start_steady = false;
   // Section averages at the stations at every probe check: the approach to steady state.
   std::vector<HistoryRow> history;
+  double peak_rss_bytes = 0.0;  // largest resident set of the process (all segments)
+  int restarts = 0;             // times the run was continued from a checkpoint
+  struct {
+    double tol = 0.0, window = 0.0, t_min = 0.0;  // the steady test used (steady_state.hpp)
+  } steady_criterion;
 };
 
 // Runs the case. Numerical failures (NaN, blow-up, lost particles) do not throw: they end
 // the run with status "failed" and a message, after on_fields() got the last good state.
-RunResult run_simulation(const Case& c, RunObserver& observer);
+// With `resume`, continue the run of that checkpoint (same case) instead of starting it.
+RunResult run_simulation(const Case& c, RunObserver& observer,
+                         const RunCheckpoint* resume = nullptr);
 
 }  // namespace adrsph

@@ -8,10 +8,45 @@ namespace {
 std::vector<double> flatten(const ProbeTable& p) {
   std::vector<double> v;
   v.reserve(4 * p.x_mm.size());
-  for (const auto* a : {&p.c_y0, &p.c_yp25, &p.c_ym25, &p.c_mean}) v.insert(v.end(), a->begin(), a->end());
+  for (const auto* a : {&p.c_y0, &p.c_yp25, &p.c_ym25, &p.c_mean})
+    v.insert(v.end(), a->begin(), a->end());
   return v;
 }
 }  // namespace
+
+double cold_start_transient(const Case& c, double t) {
+  const double L = c.geometry.length, u_max = c.u_max();
+  const double k = c.species.k, c_in = c.species.c_in, c_init = c.species.c_init;
+  // Midpoint rule over y in [0, R] (the profile is symmetric); 4000 points resolve the
+  // near-wall layer where the unswept streamlines are.
+  constexpr int n = 4000;
+  double steady = 0.0, excess = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double eta = (i + 0.5) / n;
+    const double u = u_max * (1.0 - eta * eta);
+    const double c_steady = c_in * std::exp(-k * L / u);
+    steady += c_steady;
+    // Not yet swept at the outlet (u t < L): this streamline still holds the initial fluid.
+    if (u * t < L)
+      excess += std::fabs(c_init - c_in) * std::exp(-k * t) + (c_in * std::exp(-k * t) - c_steady);
+  }
+  return excess / std::max(steady, 1e-12 * std::max(c_in, 1e-300));
+}
+
+SteadyCriterion steady_criterion(const Case& c) {
+  SteadyCriterion s;
+  s.tol = c.time.steady_tol;
+  s.window = c.time.steady_window;
+  s.scale = std::max(c.species.c_in, 1e-300);
+  // The earliest time the bound on the cold-start transient allows (it only decreases).
+  s.t_min = 0.0;
+  if (c.time.steady_sweep_tol > 0.0) {
+    const double step = 0.01;
+    while (s.t_min < c.time.t_end && cold_start_transient(c, s.t_min) > c.time.steady_sweep_tol)
+      s.t_min += step;
+  }
+  return s;
+}
 
 std::vector<double> SteadyStateDetector::window_mean(double t0, double t1) const {
   std::vector<double> mean;
@@ -27,22 +62,42 @@ std::vector<double> SteadyStateDetector::window_mean(double t0, double t1) const
 }
 
 double SteadyStateDetector::update(double t, const ProbeTable& p) {
-  const double eps = 1e-9 * window_;
+  const double w = crit_.window;
+  const double eps = 1e-9 * w;
   samples_.emplace_back(t, flatten(p));
-  while (!samples_.empty() && samples_.front().first < t - 2.0 * window_ - eps) samples_.pop_front();
-  if (t < 2.0 * window_ - eps) return std::numeric_limits<double>::infinity();  // too early
-  const auto recent = window_mean(t - window_ - eps, t + eps);
-  const auto earlier = window_mean(t - 2.0 * window_ - eps, t - window_ - eps);
+  while (!samples_.empty() && samples_.front().first < t - 2.0 * w - eps) samples_.pop_front();
+  if (t < 2.0 * w - eps) return std::numeric_limits<double>::infinity();  // too early
+  const auto recent = window_mean(t - w - eps, t + eps);
+  const auto earlier = window_mean(t - 2.0 * w - eps, t - w - eps);
   if (recent.empty() || earlier.empty()) return std::numeric_limits<double>::infinity();
   double change = 0.0;
   for (std::size_t i = 0; i < recent.size(); ++i)
     change = std::max(change, std::fabs(recent[i] - earlier[i]));
-  change /= scale_;
-  if (change < tol_ && !steady_) {
+  change /= crit_.scale;
+  if (change < crit_.tol && t >= crit_.t_min && !steady_) {
     steady_ = true;
     t_steady_ = t;
   }
   return change;
+}
+
+SteadySnapshot SteadyStateDetector::snapshot() const {
+  SteadySnapshot s;
+  for (const auto& [t, v] : samples_) {
+    s.t.push_back(t);
+    s.values.push_back(v);
+  }
+  s.steady = steady_;
+  s.t_steady = t_steady_;
+  return s;
+}
+
+void SteadyStateDetector::restore(const SteadySnapshot& s) {
+  samples_.clear();
+  for (std::size_t i = 0; i < s.t.size() && i < s.values.size(); ++i)
+    samples_.emplace_back(s.t[i], s.values[i]);
+  steady_ = s.steady;
+  t_steady_ = s.t_steady;
 }
 
 }  // namespace adrsph

@@ -1,6 +1,8 @@
 #include "boundaries/channel_scene.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace adrsph {
 
@@ -46,6 +48,13 @@ void ChannelScene::initialise(ParticleStore& s) const {
         break;
     }
   });
+}
+
+void ChannelScene::set_inflow_row_tails(std::vector<double> tails) {
+  if (tails.size() != row_tail_x_.size())
+    throw std::invalid_argument("the checkpoint has " + std::to_string(tails.size()) +
+                                " inflow rows, the case " + std::to_string(row_tail_x_.size()));
+  row_tail_x_ = std::move(tails);
 }
 
 void ChannelScene::advance_inflow(double dt) {

@@ -50,6 +50,10 @@ class ChannelScene {
   // inlet (those are counted in `lost`).
   void feed_and_drain(ParticleStore& s, std::vector<char>& keep, long& lost);
 
+  // The inflow row generators (checkpoint/restart).
+  const std::vector<double>& inflow_row_tails() const { return row_tail_x_; }
+  void set_inflow_row_tails(std::vector<double> tails);
+
   double length() const { return length_; }
   double half_width() const { return half_width_; }
 

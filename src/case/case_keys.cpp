@@ -198,6 +198,8 @@ std::vector<KeyDef> make_keys() {
   k.push_back(number(
       "time.steady_window", [](Case & c) -> auto& { return c.time.steady_window; }));
   k.push_back(number(
+      "time.steady_sweep_tol", [](Case & c) -> auto& { return c.time.steady_sweep_tol; }));
+  k.push_back(number(
       "time.average_window", [](Case & c) -> auto& { return c.time.average_window; }));
   k.push_back(boolean(
       "time.warm_start", [](Case & c) -> auto& { return c.time.warm_start; }));
@@ -208,6 +210,8 @@ std::vector<KeyDef> make_keys() {
       "output.field_times", [](Case & c) -> auto& { return c.output.field_times; }));
   k.push_back(boolean(
       "output.progress", [](Case & c) -> auto& { return c.output.progress; }));
+  k.push_back(number(
+      "output.checkpoint_minutes", [](Case & c) -> auto& { return c.output.checkpoint_minutes; }));
   return k;
 }
 

@@ -116,6 +116,8 @@ void check_time_output(Checker& k, const Case& c) {
   k.positive("time.check_interval", t.check_interval);
   k.positive("time.steady_tol", t.steady_tol);
   k.non_negative("time.steady_window", t.steady_window);
+  k.non_negative("time.steady_sweep_tol", t.steady_sweep_tol);
+  k.non_negative("output.checkpoint_minutes", c.output.checkpoint_minutes);
   if (k.problem) return;
   k.range("time.average_window", t.average_window, 0.0, false, t.t_end, true);
   for (std::size_t i = 0; i < c.output.field_times.size(); ++i) {

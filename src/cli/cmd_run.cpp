@@ -1,14 +1,20 @@
 // `adrsph run CASE.toml [--set key=value ...] [--out DIR] [--threads N] [--quiet]`
+// `adrsph run --restart DIR [--set key=value ...] [--threads N] [--quiet]`
 #include <omp.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "adrsph/case.hpp"
+#include "adrsph/io/checkpoint_h5.hpp"
 #include "adrsph/io/fields_h5.hpp"
 #include "adrsph/io/output_dir.hpp"
 #include "adrsph/io/run_json.hpp"
@@ -21,12 +27,18 @@
 namespace adrsph::cli {
 namespace {
 
+namespace fs = std::filesystem;
 constexpr int kExitIoError = 1;  // could not write the outputs, or an internal error
+
+// Keys a continued run may change: when and how it ends and reports, never its physics.
+constexpr const char* kRestartKeys[] = {"time.t_end", "time.max_steps", "time.stop_when_steady",
+                                        "output.checkpoint_minutes", "output.progress"};
 
 struct RunOptions {
   std::string case_file;
   std::vector<std::string> sets;
   std::string out;
+  std::string restart;
   int threads = 0;
   bool quiet = false;
 };
@@ -35,10 +47,16 @@ void error(const std::string& what) {
   std::cerr << "adrsph run: error: " << what << "\n";
 }
 
+// Set by SIGINT/SIGTERM; the run loop asks for a checkpoint and stops at the next rebuild.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  g_stop_signal = sig;
+}
+
 // Writes everything except fields.h5 (already written by the observer) into `dir`.
 // Returns the file names written.
-std::vector<std::string> write_outputs(const std::filesystem::path& dir, const Case& c,
-                                       const RunResult& r, const RunContext& ctx,
+std::vector<std::string> write_outputs(const fs::path& dir, const Case& c, const RunResult& r,
+                                       const RunContext& ctx,
                                        const std::vector<FieldFrameInfo>& frames) {
   std::vector<std::string> files{"run.json"};
   write_run_json(dir / "run.json", c, r, ctx);
@@ -62,36 +80,154 @@ std::vector<std::string> write_outputs(const std::filesystem::path& dir, const C
   return files;
 }
 
-int run(const RunOptions& o) {
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+// The run to start or continue: its case, where it came from, and its checkpoint if any.
+struct RunSetup {
   Case c;
+  CheckpointFile base;  // case file, text and overrides (and the state when continuing)
+  bool resume = false;
+  fs::path out;
+};
+
+// Throws CaseError (bad input) or std::runtime_error (unreadable checkpoint).
+RunSetup prepare(const RunOptions& o) {
+  RunSetup s;
+  if (o.restart.empty()) {
+    s.c = load_case(o.case_file, o.sets);
+    s.base.case_file = o.case_file;
+    s.base.case_text = read_text(o.case_file);
+    s.base.overrides = o.sets;
+    s.out = o.out.empty() ? fs::path("runs") / s.c.name : fs::path(o.out);
+    return s;
+  }
+  s.resume = true;
+  s.out = o.restart;
+  const fs::path cp_file = StagedDir::checkpoint_path(s.out);
+  if (!fs::exists(cp_file))
+    throw CaseError(o.restart, "",
+                    "nothing to continue: no checkpoint " + cp_file.string() +
+                        " (give the --out directory of an interrupted run)");
+  s.base = read_checkpoint(cp_file);
+  for (const std::string& set : o.sets) {
+    const std::string key = set.substr(0, set.find('='));
+    bool allowed = false;
+    for (const char* k : kRestartKeys) allowed = allowed || key == k;
+    if (!allowed) {
+      std::string list;
+      for (const char* k : kRestartKeys) list += std::string(list.empty() ? "" : ", ") + k;
+      throw CaseError("--set", key,
+                      "cannot be changed when continuing a run (its physics would change "
+                      "midway); allowed: " +
+                          list);
+    }
+  }
+  // The case as the run read it, from the checkpoint's copy, then the overrides.
+  const fs::path case_copy = StagedDir::staging_path(s.out) / "case.toml";
+  std::ofstream(case_copy, std::ios::binary | std::ios::trunc) << s.base.case_text;
+  std::vector<std::string> sets = s.base.overrides;
+  sets.insert(sets.end(), o.sets.begin(), o.sets.end());
+  s.c = load_case(case_copy, sets);
+  s.c.source = s.base.case_file;
+  s.base.overrides = sets;
+  return s;
+}
+
+// The CLI observer plus checkpoints: every output.checkpoint_minutes of wall time, and on a
+// stop signal.
+class CheckpointingObserver : public CliObserver {
+ public:
+  CheckpointingObserver(fs::path fields, ProgressMode progress, bool append, fs::path checkpoint,
+                        CheckpointFile base, double minutes)
+      : CliObserver(std::move(fields), progress, append),
+        checkpoint_(std::move(checkpoint)),
+        base_(std::move(base)),
+        interval_s_(60.0 * minutes) {}
+
+  CheckpointRequest checkpoint_request(double wall_s) override {
+    if (g_stop_signal != 0) return CheckpointRequest::write_and_stop;
+    if (interval_s_ > 0 && wall_s - last_s_ >= interval_s_) {
+      last_s_ = wall_s;
+      return CheckpointRequest::write;
+    }
+    return CheckpointRequest::none;
+  }
+  void on_checkpoint(const RunCheckpoint& cp) override {
+    base_.state = cp;
+    write_checkpoint(checkpoint_, base_);
+    ++written_;
+    if (g_stop_signal == 0) log_line("checkpoint at t = " + std::to_string(cp.solver.t) + " s");
+  }
+  int written() const { return written_; }
+
+ private:
+  fs::path checkpoint_;
+  CheckpointFile base_;
+  double interval_s_, last_s_ = 0.0;
+  int written_ = 0;
+};
+
+int run(const RunOptions& o) {
+  if (o.restart.empty() == o.case_file.empty()) {
+    error(o.restart.empty() ? "give a case file, or --restart DIR to continue a run"
+                            : "give either a case file or --restart DIR, not both");
+    return kExitBadInput;
+  }
+  if (!o.restart.empty() && !o.out.empty()) {
+    error("--restart DIR continues the run in DIR: --out does not apply");
+    return kExitBadInput;
+  }
+  RunSetup setup;
   try {
-    c = load_case(o.case_file, o.sets);
+    setup = prepare(o);
   } catch (const CaseError& e) {
     error(e.what());
     return kExitBadInput;
+  } catch (const std::exception& e) {
+    error(std::string("cannot continue the run: ") + e.what());
+    return kExitBadInput;
   }
-  if (o.threads > 0) omp_set_num_threads(o.threads);
+  const Case& c = setup.c;
+  // A continued run repeats the interrupted one exactly with the same thread count.
+  const int wanted = o.threads > 0 ? o.threads : (setup.resume ? setup.base.threads : 0);
+  if (wanted > 0) omp_set_num_threads(wanted);
   const int threads = omp_get_max_threads();
-  const std::filesystem::path out =
-      o.out.empty() ? std::filesystem::path("runs") / c.name : std::filesystem::path(o.out);
+  setup.base.threads = threads;
 
   std::optional<StagedDir> stage;
   try {
-    stage.emplace(out);
+    stage.emplace(setup.out, setup.resume ? StagedDir::Mode::resume : StagedDir::Mode::fresh);
+    if (!setup.resume)
+      std::ofstream(stage->path() / "case.toml", std::ios::binary) << setup.base.case_text;
   } catch (const std::exception& e) {
     error(e.what());
     return kExitBadInput;
   }
+  const fs::path checkpoint = stage->path() / "checkpoint.h5";
   using Mode = CliObserver::ProgressMode;
   const Mode progress = (o.quiet || !c.output.progress) ? Mode::none
                         : ::isatty(STDERR_FILENO)       ? Mode::terminal
                                                         : Mode::log;
-  CliObserver observer(stage->path() / "fields.h5", progress);
+  const fs::path fields = stage->path() / "fields.h5";
+  CheckpointingObserver observer(fields, progress, setup.resume && fs::exists(fields), checkpoint,
+                                 setup.base, c.output.checkpoint_minutes);
 
+  g_stop_signal = 0;
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
   const auto t0 = std::chrono::steady_clock::now();
   RunResult r;
   try {
-    r = run_simulation(c, observer);
+    r = run_simulation(c, observer, setup.resume ? &setup.base.state : nullptr);
+  } catch (const RunInterrupted& e) {
+    observer.end_progress();
+    error(std::string(e.what()) + "; nothing to continue: start the run again");
+    return kExitInterrupted;
   } catch (const CaseError& e) {
     observer.end_progress();
     error(e.what());
@@ -102,17 +238,34 @@ int run(const RunOptions& o) {
     return kExitBadInput;
   } catch (const std::exception& e) {
     observer.end_progress();
-    error(std::string("run aborted, nothing written: ") + e.what());
+    error(std::string("run aborted: ") + e.what());
+    if (observer.written() > 0 || setup.resume) stage->keep();  // an earlier checkpoint stays
     return kExitIoError;
   }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   observer.end_progress();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  if (r.status == "interrupted") {
+    observer.close_fields();
+    stage->keep();
+    char t[32];
+    std::snprintf(t, sizeof t, "%g", r.t_reached);
+    std::cerr << "adrsph run: interrupted at t = " << t << " s (step " << r.steps
+              << "); checkpoint written to " << checkpoint.string()
+              << "\n  continue with: adrsph run --restart " << stage->final_path().string() << "\n";
+    return kExitInterrupted;
+  }
 
   SummaryInfo info{threads, wall, stage->final_path(), {}};
   try {
     const auto frames = observer.close_fields();
     const RunContext ctx{threads, wall, frames.size()};
     info.files = write_outputs(stage->path(), c, r, ctx, frames);
+    info.files.push_back("case.toml");
+    std::error_code ec;
+    fs::remove(checkpoint, ec);  // the run is complete: nothing to continue
     stage->commit();
   } catch (const std::exception& e) {
     error(std::string("cannot write the outputs: ") + e.what());
@@ -135,22 +288,29 @@ Command register_run(CLI::App& app) {
   auto opts = std::make_shared<RunOptions>();
   auto* sub = app.add_subcommand("run", "Run one SPH simulation of a case file");
   sub->footer(
-      "Writes DIR/run.json, probes.csv, stations.csv, fields.h5 and fields.xmf (see README.md).\n"
-      "The outputs are written into DIR.partial-<pid> and replace DIR only at the end, so a run\n"
-      "that fails at start-up leaves an existing DIR untouched. A run that fails numerically\n"
-      "still writes the last good state and exits 3.\n"
+      "Writes DIR/run.json, probes.csv, stations.csv, history.csv, case.toml, fields.h5 and\n"
+      "fields.xmf (see README.md). The outputs are written into DIR.partial and replace DIR only\n"
+      "at the end, so a run that fails at start-up leaves an existing DIR untouched. A run that\n"
+      "fails numerically still writes the last good state and exits 3.\n"
+      "Checkpoints: every output.checkpoint_minutes of wall time (default 10) and on SIGINT or\n"
+      "SIGTERM the run writes DIR.partial/checkpoint.h5; after a signal it exits 4.\n"
+      "`adrsph run --restart DIR` continues it (same result as an uninterrupted run; --set may\n"
+      "change only time.t_end, time.max_steps, time.stop_when_steady and output.*).\n"
       "Exit codes: 0 ok, 1 I/O or internal error, 2 bad input (case file, key, value, option),\n"
-      "3 numerical failure.\n"
+      "3 numerical failure, 4 interrupted (checkpoint written).\n"
       "Example: adrsph run cases/lfr.toml --set scheme=conventional --set particles.dx=0.5");
-  sub->add_option("case", opts->case_file, "Case file (TOML); every key: cases/README.md")
-      ->required();
+  sub->add_option("case", opts->case_file, "Case file (TOML); every key: cases/README.md");
   sub->add_option("--set", opts->sets,
                   "Override a case key, e.g. --set species.D=0.1 --set scheme=conventional "
                   "(dotted key, TOML value; bare words are strings). Repeatable")
       ->allow_extra_args(false);
   sub->add_option("--out", opts->out, "Output directory (default: runs/<case name>)");
+  sub->add_option("--restart", opts->restart,
+                  "Continue the interrupted run whose output directory is DIR (its checkpoint "
+                  "DIR.partial/checkpoint.h5 holds the case)");
   sub->add_option("--threads", opts->threads,
-                  "OpenMP threads (default: OMP_NUM_THREADS, else all cores)")
+                  "OpenMP threads (default: OMP_NUM_THREADS, else all cores; with --restart: "
+                  "the interrupted run's)")
       ->check(CLI::PositiveNumber);
   sub->add_flag("--quiet,-q", opts->quiet, "No progress line");
   return {sub, [opts] { return run(*opts); }};

@@ -8,8 +8,9 @@ namespace adrsph::cli {
 
 // Exit codes shared by all subcommands.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitBadInput = 2;   // bad case file, key, value, missing file
-inline constexpr int kExitRunFailed = 3;  // numerical failure (NaN, blow-up, lost particles)
+inline constexpr int kExitBadInput = 2;     // bad case file, key, value, missing file
+inline constexpr int kExitRunFailed = 3;    // numerical failure (NaN, blow-up, lost particles)
+inline constexpr int kExitInterrupted = 4;  // SIGINT/SIGTERM: checkpoint written, continue later
 
 // Each adds its subcommand to `app` and returns it with the function to run after parsing
 // when that subcommand was chosen; the function's result is the exit code.

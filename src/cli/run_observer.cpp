@@ -22,8 +22,15 @@ std::string format_progress(const Progress& p) {
   return buf;
 }
 
-CliObserver::CliObserver(std::filesystem::path fields_file, ProgressMode progress)
-    : fields_file_(std::move(fields_file)), progress_(progress) {}
+CliObserver::CliObserver(std::filesystem::path fields_file, ProgressMode progress, bool append)
+    : fields_file_(std::move(fields_file)), progress_(progress), append_(append) {}
+
+void CliObserver::log_line(const std::string& text) {
+  if (progress_ == ProgressMode::none) return;
+  end_progress();
+  std::fprintf(stderr, "%s\n", text.c_str());
+  std::fflush(stderr);
+}
 
 void CliObserver::on_progress(const Progress& p) {
   if (progress_ == ProgressMode::none) return;
@@ -50,11 +57,13 @@ void CliObserver::end_progress() {
 }
 
 void CliObserver::on_fields(const FieldFrame& f) {
-  if (!writer_) writer_ = std::make_unique<FieldsWriter>(fields_file_);
+  if (!writer_) writer_ = std::make_unique<FieldsWriter>(fields_file_, append_);
   writer_->write(f);
 }
 
 std::vector<FieldFrameInfo> CliObserver::close_fields() {
+  // A continued run that wrote no new frame still owns the frames of its earlier segments.
+  if (!writer_ && append_) writer_ = std::make_unique<FieldsWriter>(fields_file_, true);
   if (!writer_) return {};
   std::vector<FieldFrameInfo> frames = writer_->frames();
   writer_->close();

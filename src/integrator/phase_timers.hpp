@@ -11,13 +11,27 @@
 namespace adrsph {
 
 enum class Phase {
-  sort, neighbours, density, boundaries, forces, species, integration, probes, output, count
+  sort,
+  neighbours,
+  density,
+  boundaries,
+  forces,
+  species,
+  integration,
+  probes,
+  output,
+  count
 };
 
 class PhaseTimers {
  public:
   void add(Phase p, double seconds) { total_[static_cast<int>(p)] += seconds; }
   double total(Phase p) const { return total_[static_cast<int>(p)]; }
+  // All totals in Phase order, and back (checkpoint/restart).
+  std::vector<double> totals() const { return {total_.begin(), total_.end()}; }
+  void set_totals(const std::vector<double>& t) {
+    for (std::size_t i = 0; i < total_.size() && i < t.size(); ++i) total_[i] = t[i];
+  }
   std::vector<std::pair<std::string, double>> table() const {
     static const char* names[] = {"sort",    "neighbours",  "density", "boundaries", "forces",
                                   "species", "integration", "probes",  "output"};

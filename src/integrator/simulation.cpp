@@ -1,11 +1,14 @@
 // The run loop: steps the solver to t_end (or steady state, or max_steps), samples the
-// probes, detects steady state, reports progress and hands field frames to the observer.
+// probes, detects steady state, reports progress, hands field frames to the observer, and
+// takes checkpoints when the observer asks (checkpoint/restart: adrsph/checkpoint.hpp).
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <random>
+#include <sstream>
 
 #include "adrsph/simulation.hpp"
 #include "analysis/steady_state.hpp"
@@ -46,12 +49,24 @@ StationTable stations_from(const ProbeTable& p, double length) {
   return s;
 }
 
+double peak_rss_bytes() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return 1024.0 * static_cast<double>(ru.ru_maxrss);  // Linux reports KiB
+}
+
+int section_samples(const Case& c) {
+  return std::max(20, static_cast<int>(std::lround(4.0 * c.geometry.half_width / c.particles.dx)));
+}
+
 // time.warm_start: solve the species in the prescribed (analytic) flow to steady state, which
 // costs little (no momentum, no acoustic step), and hand its C field to the full run: the
-// WCSPH run then starts near its own steady state instead of from C = c_init.
+// WCSPH run then starts near its own steady state instead of from C = c_init. The steady
+// criterion of the full run still counts from its own t = 0 (steady_state.hpp), so the start
+// cannot shorten the time the WCSPH flow needs to sweep its slow streamlines.
 // Returns the initial C of every particle (ChannelScene::for_each_initial order). The
 // prescribed-flow solver is gone before the full run's solver is built: one solver in memory.
-std::vector<double> warm_start(const Case& c, RunResult& result) {
+std::vector<double> warm_start(const Case& c, RunObserver& observer, RunResult& result) {
   const double wall0 = omp_get_wtime();
   Case pre = c;
   pre.flow = Flow::prescribed;
@@ -61,13 +76,13 @@ std::vector<double> warm_start(const Case& c, RunResult& result) {
   pre.particles.skin = std::max(c.particles.skin, 0.2);
   SphSolver solver(pre);
   const double dt = solver.dt_limits().chosen;
-  SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window,
-                             std::max(c.species.c_in, 1e-300));
-  const int n_section =
-      std::max(20, static_cast<int>(std::lround(4.0 * c.geometry.half_width / c.particles.dx)));
+  SteadyStateDetector steady(steady_criterion(pre));
+  const int n_section = section_samples(c);
   double next_check = c.time.check_interval;
   while (solver.time() < c.time.t_end && !steady.steady()) {
     if (!solver.step(std::min(dt, c.time.t_end - solver.time()))) break;
+    if (observer.checkpoint_request(omp_get_wtime() - wall0) == CheckpointRequest::write_and_stop)
+      throw RunInterrupted("interrupted during the warm start (no checkpoint yet)");
     if (solver.time() >= next_check) {
       next_check += c.time.check_interval;
       solver.sync_for_probes();
@@ -108,23 +123,50 @@ std::vector<double> warm_start(const Case& c, RunResult& result) {
   return field;
 }
 
+// The solver of a new run (with its warm start), or of a continued one.
+SphSolver make_solver(const Case& c, RunObserver& observer, RunResult& result,
+                      const RunCheckpoint* resume) {
+  if (resume) {
+    SphSolver solver(c);
+    solver.restore(resume->solver);
+    return solver;
+  }
+  if (c.time.warm_start && c.flow == Flow::wcsph)
+    return SphSolver(c, warm_start(c, observer, result));
+  return SphSolver(c);
+}
+
 }  // namespace
 
-RunResult run_simulation(const Case& c, RunObserver& observer) {
+RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoint* resume) {
   RunResult result;
   const double wall_start = omp_get_wtime();
-  const bool warm = c.time.warm_start && c.flow == Flow::wcsph;
-  SphSolver solver = warm ? SphSolver(c, warm_start(c, result)) : SphSolver(c);
+  double wall_before = 0.0, stepping_before = 0.0;  // earlier segments of a continued run
+  if (resume) {
+    wall_before = resume->wall_s;
+    stepping_before = resume->stepping_wall_s;
+    result.restarts = resume->restarts + 1;
+    result.peak_rss_bytes = resume->peak_rss_bytes;
+    result.warm_started = resume->warm_started;
+    result.warm_start_steady = resume->warm_start_steady;
+    result.warm_start_t = resume->warm_start_t;
+    result.warm_start_steps = resume->warm_start_steps;
+    result.warm_start_wall_s = resume->warm_start_wall_s;
+    result.history = resume->history;
+  }
+  SphSolver solver = make_solver(c, observer, result, resume);
   const double wall_steps_start = omp_get_wtime();
+  auto wall_now = [&] { return wall_before + omp_get_wtime() - wall_start; };
+  auto stepping_now = [&] { return stepping_before + omp_get_wtime() - wall_steps_start; };
   result.dt = solver.dt_limits();
   const double dt = result.dt.chosen;
   const double length = c.geometry.length, half_width = c.geometry.half_width;
-  const int n_section =
-      std::max(20, static_cast<int>(std::lround(4.0 * half_width / c.particles.dx)));
+  const int n_section = section_samples(c);
   result.probe_interpolation = probe_interpolation_text(n_section);
 
-  SteadyStateDetector steady(c.time.steady_tol, c.time.steady_window,
-                             std::max(c.species.c_in, 1e-300));
+  SteadyStateDetector steady(steady_criterion(c));
+  result.steady_criterion = {steady.criterion().tol, steady.criterion().window,
+                             steady.criterion().t_min};
   std::deque<std::pair<double, ProbeTable>> window;
   std::vector<double> field_times = c.output.field_times;
   std::sort(field_times.begin(), field_times.end());
@@ -137,7 +179,16 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
   auto next_interval = [&] {
     return c.time.check_interval * (0.5 + std::uniform_real_distribution<double>(0.0, 1.0)(jitter));
   };
-  double next_check = next_interval();
+  double next_check = 0.0;
+  if (resume) {
+    steady.restore(resume->steady);
+    window.assign(resume->average_window.begin(), resume->average_window.end());
+    std::istringstream(resume->jitter_state) >> jitter;
+    next_check = resume->next_check;
+    next_field = resume->next_field;
+  } else {
+    next_check = next_interval();
+  }
   ProbeTable last_probes;
   const double eps_t = 1e-9 * dt;
 
@@ -155,8 +206,32 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
         window.pop_front();
     }
   };
+  auto checkpoint = [&] {
+    ScopedPhase timer(solver.timers(), Phase::output);
+    RunCheckpoint cp;
+    cp.solver = solver.snapshot();
+    cp.steady = steady.snapshot();
+    cp.average_window.assign(window.begin(), window.end());
+    cp.history = result.history;
+    std::ostringstream js;
+    js << jitter;
+    cp.jitter_state = js.str();
+    cp.next_check = next_check;
+    cp.next_field = next_field;
+    cp.wall_s = wall_now();
+    cp.stepping_wall_s = stepping_now();
+    cp.peak_rss_bytes = std::max(result.peak_rss_bytes, peak_rss_bytes());
+    cp.restarts = result.restarts;
+    cp.warm_started = result.warm_started;
+    cp.warm_start_steady = result.warm_start_steady;
+    cp.warm_start_t = result.warm_start_t;
+    cp.warm_start_steps = result.warm_start_steps;
+    cp.warm_start_wall_s = result.warm_start_wall_s;
+    observer.on_checkpoint(cp);
+  };
 
-  bool ok = true;
+  bool ok = true, interrupted = false;
+  CheckpointRequest pending = CheckpointRequest::none;
   while (solver.time() < c.time.t_end - eps_t &&
          (c.time.max_steps == 0 || solver.steps() < c.time.max_steps)) {
     const double h = std::min(dt, c.time.t_end - solver.time());
@@ -172,8 +247,9 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
       pr.t = t;
       pr.t_end = c.time.t_end;
       pr.step = solver.steps();
-      pr.wall_s = omp_get_wtime() - wall_start;
-      pr.steps_per_s = pr.step / std::max(pr.wall_s, 1e-9);
+      pr.wall_s = wall_now();
+      pr.steps_per_s = (pr.step - (resume ? resume->solver.steps : 0)) /
+                       std::max(omp_get_wtime() - wall_start, 1e-9);
       pr.eta_s = (c.time.t_end - t) / dt / std::max(pr.steps_per_s, 1e-9);
       pr.steady_change = steady.update(t, last_probes);
       result.history.push_back({t, stations_from(last_probes, length).c_mean, pr.steady_change});
@@ -184,8 +260,31 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
       ++next_field;
       emit_fields();
     }
+    if (pending == CheckpointRequest::none) pending = observer.checkpoint_request(wall_now());
+    // Served at a rebuild, where the snapshot is exact (checkpoint.hpp).
+    if (pending != CheckpointRequest::none && solver.just_rebuilt()) {
+      checkpoint();
+      if (pending == CheckpointRequest::write_and_stop) {
+        interrupted = true;
+        break;
+      }
+      pending = CheckpointRequest::none;
+    }
   }
 
+  result.t_reached = solver.time();
+  result.steps = solver.steps();
+  result.n_particles = solver.particles().size();
+  result.n_fluid = solver.fluid_count();
+  result.peak_rss_bytes = std::max(result.peak_rss_bytes, peak_rss_bytes());
+  if (interrupted) {
+    result.status = "interrupted";
+    result.message =
+        "stopped on request after a checkpoint at t = " + std::to_string(solver.time()) +
+        " s; continue with adrsph run --restart";
+    result.wall_s = wall_now();
+    return result;
+  }
   if (!ok) {
     result.status = "failed";
     result.message = solver.failure();
@@ -201,14 +300,9 @@ RunResult run_simulation(const Case& c, RunObserver& observer) {
   result.stations = stations_from(result.probes, length);
   emit_fields();
 
-  result.t_reached = solver.time();
-  result.steps = solver.steps();
-  result.wall_s = omp_get_wtime() - wall_start;
-  result.n_particles = solver.particles().size();
-  result.n_fluid = solver.fluid_count();
+  result.wall_s = wall_now();
   // Throughput of the stepping alone (set-up and warm start excluded).
-  result.particle_steps_per_s =
-      solver.particle_steps() / std::max(omp_get_wtime() - wall_steps_start, 1e-9);
+  result.particle_steps_per_s = solver.particle_steps() / std::max(stepping_now(), 1e-9);
   result.list_rebuilds = solver.list_rebuilds();
   result.mean_neighbours = solver.mean_neighbours();
   result.steady = steady.steady();

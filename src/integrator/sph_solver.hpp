@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "adrsph/case.hpp"
+#include "adrsph/checkpoint.hpp"
 #include "adrsph/simulation.hpp"
 #include "analysis/probes_sph.hpp"
 #include "boundaries/channel_scene.hpp"
@@ -66,6 +67,14 @@ class SphSolver {
   void rebuild();
   // Make the cell grid current for probe sampling (re-sort if particles moved > skin/2).
   void sync_for_probes();
+
+  // Checkpoint/restart (adrsph/checkpoint.hpp). A snapshot is exact only when taken right
+  // after a rebuild (just_rebuilt()): restore() rebuilds the lists from the positions.
+  bool just_rebuilt() const { return moved_abs_ == 0.0; }
+  SolverSnapshot snapshot() const;
+  // Replace the state by a snapshot of a solver of the same case. Throws
+  // std::invalid_argument when it does not fit the case.
+  void restore(const SolverSnapshot& s);
 
  private:
   template <class S, bool Ale, bool Split>

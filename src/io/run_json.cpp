@@ -75,6 +75,12 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
     stations[x_key(r.stations.x_mm[i])] = number(r.stations.c_mean[i]);
   j["stations"] = stations;
   j["field_frames"] = ctx.field_frames;
+  j["ale"] = c.species.ale;
+  j["peak_rss_bytes"] = number(r.peak_rss_bytes);
+  j["restarts"] = r.restarts;
+  j["steady_criterion"] = Json{{"tol", number(r.steady_criterion.tol)},
+                               {"window", number(r.steady_criterion.window)},
+                               {"t_min", number(r.steady_criterion.t_min)}};
   j["version"] = "0.1.0";
   return j.dump(2) + "\n";
 }

@@ -45,7 +45,12 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
+    if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) {
+      // Buffers do not shift; a particle that enters the fluid at the end of this step is
+      // then checked (check_state) with a defined zero, not a stale value of its index.
+      if constexpr (Scheme::shifting) s.sx[i] = s.sy[i] = 0.0f;
+      continue;
+    }
     const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i], rhoi_d = rho[i], ci_d = c[i];
     const real rhoi = static_cast<real>(rhoi_d), pi = p[i], voli = vol[i];
     const real inv_rhoi = real(1) / rhoi;

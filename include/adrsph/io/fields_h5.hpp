@@ -19,12 +19,13 @@ struct FieldFrameInfo {
   std::size_t n = 0;  // particles in the frame
 };
 
-// Appends frames to a new HDF5 file (an existing file is replaced). Each frame is flushed to
-// disk when written, so a run that dies later keeps its frames. Errors throw
-// std::runtime_error naming the file.
+// Appends frames to an HDF5 file: a new one (an existing file is replaced), or, with
+// `append`, the file of an interrupted run that is continued (its frames are kept). Each
+// frame is flushed to disk when written, so a run that dies later keeps its frames. Errors
+// throw std::runtime_error naming the file.
 class FieldsWriter {
  public:
-  explicit FieldsWriter(std::filesystem::path file);
+  explicit FieldsWriter(std::filesystem::path file, bool append = false);
   ~FieldsWriter();
   FieldsWriter(const FieldsWriter&) = delete;
   FieldsWriter& operator=(const FieldsWriter&) = delete;

@@ -1,0 +1,64 @@
+// The state of a run between two steps, as plain data: what a checkpoint holds so that a
+// run stopped and continued ends with exactly the result of one that was not.
+//
+// A checkpoint is taken right after the neighbour lists were rebuilt: the particles are then
+// in cell order and the lists and the displacement monitor depend on the positions alone, so
+// rebuilding them on restart gives the same lists, and the continued run repeats the
+// uninterrupted one bit for bit (with the same number of threads: OpenMP reductions sum in
+// an order that depends on it).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adrsph/probes.hpp"
+
+namespace adrsph {
+
+// The solver: particle state (in store order) and every counter that the run reports.
+struct SolverSnapshot {
+  std::vector<double> x, y, vx, vy, rho, c;
+  std::vector<float> p, vol;  // derived, but kept: new inlet particles carry them unset
+  std::vector<std::uint8_t> kind;
+  std::vector<double> inflow_row_tail;  // x of the most upstream inlet particle of each row
+  double t = 0.0;
+  long steps = 0, lost = 0, lost_reported = 0, rebuilds = 0;
+  double particle_steps = 0.0;
+  std::array<double, 4> ledger{};  // inflow, outflow, buffer exchange, reaction
+  long entered = 0, left = 0;      // boundary crossings
+  double species_in = 0.0, species_out = 0.0;
+  std::vector<double> phase_seconds;  // per PhaseTimers phase
+};
+
+// The steady-state detector: its samples and verdict.
+struct SteadySnapshot {
+  std::vector<double> t;                    // sample times
+  std::vector<std::vector<double>> values;  // one flattened probe set per sample
+  bool steady = false;
+  double t_steady = 0.0;
+};
+
+// Everything of a run in progress.
+struct RunCheckpoint {
+  SolverSnapshot solver;
+  SteadySnapshot steady;
+  std::vector<std::pair<double, ProbeTable>> average_window;  // time.average_window samples
+  std::vector<HistoryRow> history;
+  std::string jitter_state;  // the check-instant generator (std::minstd_rand, streamed)
+  double next_check = 0.0;
+  std::size_t next_field = 0;    // next output.field_times entry
+  double wall_s = 0.0;           // wall time of the run so far (all segments)
+  double stepping_wall_s = 0.0;  // of which stepping (throughput)
+  double peak_rss_bytes = 0.0;   // largest peak RSS of the segments so far
+  int restarts = 0;              // segments so far - 1
+  // time.warm_start: the prescribed-flow start (see RunResult).
+  bool warm_started = false, warm_start_steady = false;
+  double warm_start_t = 0.0, warm_start_wall_s = 0.0;
+  long warm_start_steps = 0;
+  double t_start = 0.0;  // simulated time at which the steady test's clock starts
+};
+
+}  // namespace adrsph

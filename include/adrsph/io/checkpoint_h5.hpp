@@ -1,0 +1,33 @@
+// Checkpoint files (HDF5): a run in progress, with the case it runs, so that
+// `adrsph run --restart DIR` can continue it. Layout:
+//   /case     uint8 datasets case_text (the case file as it was read), case_file (its path),
+//             overrides (the --set values, one per line); attribute threads
+//   /solver   particle arrays x, y, vx, vy, rho, c (double), p, vol (float), kind (uint8),
+//             inflow_row_tail; counters and the species ledger as attributes; phase_seconds
+//   /run      steady-test samples, history, average window, check clock, wall times, warm
+//             start, restarts, peak RSS
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "adrsph/checkpoint.hpp"
+
+namespace adrsph {
+
+struct CheckpointFile {
+  RunCheckpoint state;
+  std::string case_file;               // the case file's path as given to `run`
+  std::string case_text;               // its contents when the run started
+  std::vector<std::string> overrides;  // the --set key=value strings
+  int threads = 0;                     // threads of the run (bit-identical restarts need the same)
+};
+
+// Writes `file` whole or not at all (a temporary file renamed over it). Throws
+// std::runtime_error naming the file.
+void write_checkpoint(const std::filesystem::path& file, const CheckpointFile& cp);
+// Throws std::runtime_error naming the file and what is missing or malformed.
+CheckpointFile read_checkpoint(const std::filesystem::path& file);
+
+}  // namespace adrsph
