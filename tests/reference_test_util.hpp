@@ -1,5 +1,5 @@
-// Shared by the reference-solver tests: the reactor problem built in code (spec section 1)
-// and the closed-form solution of the 1D advection-dispersion-reaction problem.
+// Shared by the reference-solver tests: the reactor problem built in code (docs/benchmark.md,
+// section 1) and the closed-form solution of the 1D advection-dispersion-reaction problem.
 #pragma once
 
 #include <cmath>
@@ -8,7 +8,7 @@
 
 namespace adrsph::reference::testing {
 
-// The paper's reactor (spec section 1) at diffusivity D.
+// The paper's reactor (docs/benchmark.md, section 1) at diffusivity D.
 inline Problem reactor(double D) {
   Case c;
   c.species.D = D;

@@ -1,4 +1,4 @@
-// Every shipped case file parses and validates, and says what the spec says.
+// Every shipped case file parses and validates, and says what docs/benchmark.md says.
 #include <gtest/gtest.h>
 
 #include "adrsph/case.hpp"

@@ -1,5 +1,5 @@
-// Lattice consistency of the SPH operators (spec section 2): on a regular lattice with
-// spacing dx and h = dx, each discrete operator must reproduce its continuum value.
+// Lattice consistency of the SPH operators (docs/benchmark.md, section 2): on a regular
+// lattice with spacing dx and h = dx, each discrete operator must reproduce its continuum value.
 #include <gtest/gtest.h>
 
 #include <cmath>

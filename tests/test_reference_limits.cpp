@@ -1,4 +1,4 @@
-// Reference solver, the independent checks of spec section 5 on the reactor itself:
+// Reference solver, the independent checks of docs/benchmark.md, section 5 on the reactor itself:
 // Pe -> infinity (C = 2 exp(-k x / u(y))), Pe = 1e5 within 0.5% of it, monotonicity at
 // Pe = 1e5, and the Pe = 10 section average against the Taylor-Aris 1D model.
 #include <gtest/gtest.h>
@@ -11,12 +11,13 @@
 namespace adrsph::reference {
 namespace {
 
-// Spec section 5: section averages of 2 exp(-k x / u(y)) at x = 25, 50, 100.
+// docs/benchmark.md, section 5: section averages of 2 exp(-k x / u(y)) at x = 25, 50, 100.
 constexpr double kNoDiffusion[] = {1.38274, 1.04125, 0.62800};
 // Observed agreement of the 2D Pe = 10 section averages with Taylor-Aris: see the test.
 constexpr double kTaylorArisTolerance = 5e-4;  // observed: 0.012%, 0.012%, 0.024% (400x40)
 
-// The same by quadrature (midpoint rule, 200,000 points), to check the spec's numbers.
+// The same by quadrature (midpoint rule, 200,000 points), to check the numbers of
+// docs/benchmark.md.
 double no_diffusion_average(double x) {
   const int n = 200000;
   double sum = 0.0;
@@ -59,8 +60,9 @@ TEST(ReferenceLimits, Pe1e5IsWithinHalfAPercentOfTheLimit) {
   }
 }
 
-// Non-oscillatory at Pe = 1e5 (spec 5, issue 4): 0 <= C <= c_in and C non-increasing
-// along x on every grid line (the continuous solution is: dC/dx obeys a maximum principle).
+// Non-oscillatory at Pe = 1e5 (docs/benchmark.md, section 5; issue 4): 0 <= C <= c_in and C
+// non-increasing along x on every grid line (the continuous solution is: dC/dx obeys a maximum
+// principle).
 TEST(ReferenceLimits, Pe1e5IsBoundedAndMonotoneAlongX) {
   const Problem p = testing::reactor(0.1);
   for (int nx : {400, 800}) {
@@ -83,7 +85,7 @@ TEST(ReferenceLimits, Pe1e5IsBoundedAndMonotoneAlongX) {
 
 // Pe = 10: transverse mixing is fast, so the section average follows the 1D dispersion
 // model with the Taylor-Aris coefficient K = D (1 + (2/105) (U a / D)^2), U = (2/3) u_max
-// the true mean velocity, a = R (spec section 5).
+// the true mean velocity, a = R (docs/benchmark.md, section 5).
 TEST(ReferenceLimits, Pe10FollowsTaylorAris) {
   const Problem p = testing::reactor(1000.0);
   const Solution s = solve_steady(p, 400, 40);

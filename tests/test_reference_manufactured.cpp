@@ -1,4 +1,5 @@
-// Reference solver, assembly check by a manufactured solution (issue 4, spec section 5):
+// Reference solver, assembly check by a manufactured solution (issue 4; docs/benchmark.md,
+// section 5):
 // C = (2 + cos(pi x / L)) (1 + 0.3 cos(pi y / R)) satisfies the zero-gradient walls and
 // outlet; its source term makes it exact. The error must fall at the designed order (2)
 // for the full operator with the van Leer limiter, and at order 1 for plain upwind.

@@ -53,7 +53,8 @@ TEST(ReferencePlugFlow, ClosedFormMeetsItsBoundaryConditions) {
   EXPECT_NEAR(c(0.0), 2.0, 1e-12);
   EXPECT_NEAR((c(100.0) - c(100.0 - 1e-5)) / 1e-5, 0.0, 1e-6);
   const testing::AxialDispersion1D no_dispersion{100.0, 1e-6, 1.462, 100.0, 2.0};
-  EXPECT_NEAR(no_dispersion(100.0), 2.0 * std::exp(-1.462), 1e-6);  // spec 5: 0.4635
+  // docs/benchmark.md, section 5: 0.4635.
+  EXPECT_NEAR(no_dispersion(100.0), 2.0 * std::exp(-1.462), 1e-6);
 }
 
 }  // namespace

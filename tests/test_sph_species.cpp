@@ -12,7 +12,7 @@ namespace {
 
 TEST(Species, PureReactionDecaysExponentially) {
   // Prescribed flow at (almost) rest, no diffusion: every fluid particle must follow
-  // C(t) = C0 exp(-k t) (the reaction is integrated exactly, spec section 6).
+  // C(t) = C0 exp(-k t) (the reaction is integrated exactly, docs/benchmark.md, section 6).
   Case c = testing::short_channel(Scheme::modern, Flow::prescribed);
   c.fluid.u_bulk = 1e-9;
   c.species.D = 0.0;

@@ -4,7 +4,7 @@
 Reads the last frame of RUN_DIR/fields.h5 (groups /frame_NNNNNN with datasets x, y, c, kind;
 kind 0 = fluid) and REF_DIR/reference.h5 (x (nx), y (ny), C (ny x nx)), interpolates the
 scattered fluid particles to the reference grid (linear, Delaunay via matplotlib.tri) and
-draws both sets of contour lines on one channel (spec section 4). Either input may be
+draws both sets of contour lines on one channel (docs/benchmark.md, section 4). Either input may be
 omitted to draw the other alone.
 
 usage: plot_contours.py [--run RUN_DIR] [--ref REF_DIR] [--out FILE.png] [--levels N]

@@ -3,7 +3,7 @@
 
 Reads the CSV written by `adrsph compare` (x_mm,err_y0,err_y+2.5,err_y-2.5,err_mean) and
 draws |C - C_ref| / C_ref against x on the three probe lines (and the section average),
-log scale (spec section 4).
+log scale (docs/benchmark.md, section 4).
 
 usage: plot_errors.py ERRORS.csv [--out FILE.png] [--title TEXT]
 """

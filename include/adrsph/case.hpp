@@ -35,7 +35,8 @@ struct Case {
   struct Fluid {
     double rho0 = 1.2;                   // `fluid.rho0` [kg/m^3]
     double nu = 15.0;                    // `fluid.nu` [mm^2/s]
-    double u_bulk = 100.0;               // `fluid.u_bulk` [mm/s]; u_max = 2 u_bulk (spec 1)
+    double u_bulk = 100.0;               // `fluid.u_bulk` [mm/s]; u_max = 2 u_bulk
+                                         // (docs/benchmark.md, section 1)
     double c0_factor = 10.0;             // `fluid.c0_factor`, c0 = c0_factor * u_max
     double gamma = 7.0;                  // `fluid.gamma`, Tait exponent
     double background_pressure = 0.025;  // `fluid.background_pressure`, p_b / (rho0 c0^2)

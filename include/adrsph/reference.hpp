@@ -1,9 +1,10 @@
-// The reference solution (spec section 5, the paper's COMSOL role): the steady problem
+// The reference solution (docs/benchmark.md, section 5; the paper's COMSOL role): the steady
+// problem
 //   u(y) dC/dx = D (C_xx + C_yy) - k C + S(x, y)
 // on x in [0, L], y in [-R, R], C = C_in(y) at x = 0, dC/dn = 0 at the walls and the outlet,
 // on a structured cell-centred finite-volume grid, solved with Eigen's sparse solvers.
 // S is zero for the reactor; tests use it for manufactured solutions. Shares no code with
-// the SPH path (spec section 5).
+// the SPH path (docs/benchmark.md, section 5).
 #pragma once
 
 #include <filesystem>
@@ -23,7 +24,7 @@ struct Problem {
   double D = 10.0;          // diffusivity [mm^2/s]
   double k = 1.462;         // first-order rate [1/s]
   double c_in = 2.0;        // inlet concentration (used when `inlet` is empty)
-  double u_bulk = 100.0;    // recorded in the output; u_max = 2 u_bulk (spec section 1)
+  double u_bulk = 100.0;    // recorded in the output; u_max = 2 u_bulk (docs/benchmark.md, 1)
   std::function<double(double y)> velocity;          // u(y) [mm/s]
   std::function<double(double y)> inlet;             // C(0, y); empty: c_in
   std::function<double(double x, double y)> source;  // S(x, y); empty: 0
@@ -32,7 +33,8 @@ struct Problem {
   double peclet() const { return u_bulk * length / D; }
 };
 
-// The reactor of a case: parabolic u(y) = u_max (1 - (y/R)^2), u_max = 2 u_bulk (spec 1).
+// The reactor of a case: parabolic u(y) = u_max (1 - (y/R)^2), u_max = 2 u_bulk
+// (docs/benchmark.md, section 1).
 Problem problem_from_case(const Case& c);
 std::function<double(double)> parabolic_profile(double u_max, double half_width);
 
@@ -81,7 +83,7 @@ struct Solution {
 
 Solution solve_steady(const Problem& p, int nx, int ny, const SolverOptions& opt = {});
 
-// Sampling (spec section 4). C(x, y) bilinear between cell centres; towards x = 0 the
+// Sampling (docs/benchmark.md, section 4). C(x, y) bilinear between cell centres; towards x = 0 the
 // Dirichlet value, beyond the last centre the zero-gradient face value; likewise in y.
 double sample(const Solution& s, const Problem& p, double x, double y);
 // Area average over y in [-R, R]: sum_j C_ij dy / 2R per column, linear in x between centres.
@@ -105,7 +107,7 @@ ReferenceField read_reference_h5(const std::filesystem::path& file);
 void write_reference_json(const std::filesystem::path& file, const std::string& case_name,
                           const Solution& s, const Problem& p);
 
-// Grid convergence (spec section 5): the same problem on several grids, finest last.
+// Grid convergence (docs/benchmark.md, section 5): the same problem on several grids, finest last.
 struct ConvergenceLevel {
   int nx = 0, ny = 0;
   StationTable stations;
@@ -117,8 +119,8 @@ double relative_change(const std::vector<ConvergenceLevel>& levels, std::size_t 
 // NaN when the differences vanish.
 double observed_order(const std::vector<ConvergenceLevel>& levels, std::size_t l, std::size_t m);
 
-// The spec-5 criterion: every station of grid `nx` changes by < `tolerance` relative on the
-// next finer level. `checked` is false when there is no finer level.
+// The criterion of docs/benchmark.md, section 5: every station of grid `nx` changes by
+// < `tolerance` relative on the next finer level. `checked` is false when there is no finer level.
 struct ConvergenceVerdict {
   bool checked = false;
   bool pass = false;

@@ -1,4 +1,4 @@
-// The paper's error metrics (spec section 4): SPH run against the reference.
+// The paper's error metrics (docs/benchmark.md, section 4): SPH run against the reference.
 #pragma once
 
 #include <filesystem>

@@ -1,5 +1,5 @@
-// Relative errors of a run against the reference (spec section 4, the paper's figures 3-5
-// and table 3): |C - C_ref| / C_ref.
+// Relative errors of a run against the reference (docs/benchmark.md, section 4; the paper's
+// figures 3-5 and table 3): |C - C_ref| / C_ref.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// The paper's table 3 (spec section 4): relative error of the section average at
+// The paper's table 3 (docs/benchmark.md, section 4): relative error of the section average at
 // x = 25, 50, 100, fine resolution, for the modern and the conventional scheme.
 #include <cmath>
 

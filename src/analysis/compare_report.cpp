@@ -1,5 +1,5 @@
 // The compare outputs: the line errors as CSV (figures 3-5 data) and the Markdown report
-// with the paper's table 3 beside ours (spec section 4).
+// with the paper's table 3 beside ours (docs/benchmark.md, section 4).
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -45,7 +45,9 @@ std::string compare_markdown(const std::string& run_name, const std::string& ref
   md += "Pe = " + (info.pe ? fixed(*info.pe, "%g") : std::string("unknown")) +
         ", scheme = " + info.scheme.value_or("unknown") + "\n\n";
   md += "## Section average, relative error (the paper's table 3)\n\n";
-  md += "The paper's numbers are for its fine resolution (dx = 0.125 mm), spec section 4.\n\n";
+  md +=
+      "The paper's numbers are for its fine resolution (dx = 0.125 mm); docs/benchmark.md, "
+      "section 4.\n\n";
   md += "| x [mm] | C_ref | C_run | error (ours) |";
   std::string rule = "|---|---|---|---|";
   if (modern || both) md += " paper, modern |", rule += "---|";

@@ -1,6 +1,6 @@
-// The laminar-flow-reactor channel (spec section 1): fluid lattice in [0, L] x [-R, R],
-// dummy wall layers above and below, an inflow buffer upstream of x = 0 fed row by row with
-// the parabolic profile and C = c_in, and an outflow buffer downstream of x = L where
+// The laminar-flow-reactor channel (docs/benchmark.md, section 1): fluid lattice in
+// [0, L] x [-R, R], dummy wall layers above and below, an inflow buffer upstream of x = 0 fed row
+// by row with the parabolic profile and C = c_in, and an outflow buffer downstream of x = L where
 // particles keep their velocity and C (zero gradient) until they are removed.
 #pragma once
 

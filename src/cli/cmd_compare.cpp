@@ -1,6 +1,6 @@
-// `adrsph compare RUN_DIR REF_DIR [--out FILE]`: the paper's metrics (spec section 4, issue
-// 4). Relative error along the three probe lines (CSV + PNG, figures 3-5) and of the section
-// averages at x = 25, 50, 100 beside the paper's table 3 (Markdown, also printed).
+// `adrsph compare RUN_DIR REF_DIR [--out FILE]`: the paper's metrics (docs/benchmark.md,
+// section 4; issue 4). Relative error along the three probe lines (CSV + PNG, figures 3-5) and of
+// the section averages at x = 25, 50, 100 beside the paper's table 3 (Markdown, also printed).
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -123,7 +123,8 @@ int run_compare(const CompareOptions& o) {
 Command register_compare(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "compare",
-      "Relative error of a run against a reference (spec section 4): along the probe lines "
+      "Relative error of a run against a reference (docs/benchmark.md, section 4): along the "
+      "probe lines "
       "y = 0, +2.5, -2.5 and of the section average (the paper's figures 3-5), and of the "
       "section averages at x = 25, 50, 100 beside the paper's table 3 (row chosen by Pe and "
       "scheme from RUN_DIR/run.json). Reads probes.csv and stations.csv of both. Writes FILE "

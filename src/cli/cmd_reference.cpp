@@ -1,4 +1,4 @@
-// `adrsph reference`: the steady finite-volume reference of a case (spec section 5,
+// `adrsph reference`: the steady finite-volume reference of a case (docs/benchmark.md, section 5,
 // issue 4). Writes DIR/probes.csv, DIR/stations.csv, DIR/reference.h5, DIR/reference.json;
 // with --convergence also solves on nx/4, nx/2, nx, 2nx and prints the convergence table.
 #include <cstdio>
@@ -75,7 +75,7 @@ int run_convergence(const ReferenceOptions& o, const ref::Problem& p, const ref:
   const char* verdict = !v.checked ? "NOT CHECKED" : v.pass ? "PASS" : "FAIL";
   std::printf(
       "%s: largest relative change of a station average from %dx%d to %dx%d: %.2e "
-      "(must be < 1e-4, spec section 5)\n",
+      "(must be < 1e-4, docs/benchmark.md, section 5)\n",
       verdict, o.nx, o.ny, 2 * o.nx, 2 * o.ny, v.max_change);
   std::FILE* f = std::fopen((dir / "convergence.md").c_str(), "w");
   if (f) {
@@ -139,7 +139,8 @@ int run_reference(const ReferenceOptions& o) {
 Command register_reference(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "reference",
-      "Steady finite-volume reference solution of a case (spec section 5): u(y) dC/dx = "
+      "Steady finite-volume reference solution of a case (docs/benchmark.md, section 5): "
+      "u(y) dC/dx = "
       "D lap C - k C on a structured grid, van Leer TVD advection, Eigen SparseLU. Writes "
       "DIR/probes.csv, stations.csv, reference.h5, reference.json. DIR defaults to "
       "runs/reference_<case name>.\n"

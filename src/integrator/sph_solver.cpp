@@ -204,7 +204,7 @@ bool SphSolver::step_impl(double dt) {
   {
     ScopedPhase timer(timers_, Phase::integration);
     // First-order reaction, exact over the step: it commutes with the linear transport
-    // operators because k is uniform (spec section 6).
+    // operators because k is uniform (docs/benchmark.md, section 6).
     const double decay = species_decay(case_.species.k, dt);
     const std::size_t n = store_.size();
     const double mass = phys_.mass;

@@ -1,4 +1,4 @@
-// Explicit time-step limits (spec section 6):
+// Explicit time-step limits (docs/benchmark.md, section 6):
 //   acoustic  dt <= cfl h / (c0 + u_max)       (WCSPH flow)
 //   advective dt <= cfl h / u_max              (prescribed flow: no sound waves)
 //   viscous   dt <= viscous_number h^2 / nu    (WCSPH flow)

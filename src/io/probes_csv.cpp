@@ -1,5 +1,5 @@
 // probes.csv / stations.csv: the probe contract shared by `run`, `reference` and `compare`
-// (include/adrsph/probes.hpp; spec section 4). Full precision (%.10g), exact headers.
+// (include/adrsph/probes.hpp; docs/benchmark.md, section 4). Full precision (%.10g), exact headers.
 #include <cmath>
 #include <cstdio>
 #include <fstream>

@@ -1,7 +1,7 @@
-// Quintic B-spline (Schoenberg M6) kernel in 2D, support 3h (spec section 1).
+// Quintic B-spline (Schoenberg M6) kernel in 2D, support 3h (docs/benchmark.md, section 1).
 //   W(q) = sigma [ (3-q)_+^5 - 6 (2-q)_+^5 + 15 (1-q)_+^5 ],  sigma = 7 / (478 pi h^2)
 // Written branch-free, (x)_+ = (x + |x|) / 2, so the neighbour loops vectorise
-// (std::max stops g++ from vectorising, see performance-notes).
+// (std::max stopped g++ 12 from vectorising it: perf/README.md, "Build flags").
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// High-order part of the advective face value (spec section 5: non-oscillatory at
+// High-order part of the advective face value (docs/benchmark.md, section 5: non-oscillatory at
 // Pe = 1e5): C_face = C_i + slope_i / 2 with a TVD-limited slope; the part beyond
 // first-order upwind is applied by deferred correction (steady_solver.cpp).
 #include <algorithm>

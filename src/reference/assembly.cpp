@@ -1,5 +1,5 @@
-// Assembly of the first-order upwind system (spec section 5): see finite_volume.hpp for
-// the cell balance. Triplets, then one compressed sparse matrix.
+// Assembly of the first-order upwind system (docs/benchmark.md, section 5): see
+// finite_volume.hpp for the cell balance. Triplets, then one compressed sparse matrix.
 #include <stdexcept>
 
 #include "reference/finite_volume.hpp"

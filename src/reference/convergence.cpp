@@ -1,5 +1,5 @@
-// Grid convergence measures (spec section 5: the change of every section average between
-// the two finest grids must be below 1e-4 relative).
+// Grid convergence measures (docs/benchmark.md, section 5: the change of every section
+// average between the two finest grids must be below 1e-4 relative).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

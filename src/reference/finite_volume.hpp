@@ -1,5 +1,5 @@
 // Internal: the cell-centred finite-volume discretisation of the reference problem
-// (spec section 5). Each cell balance, per unit depth:
+// (docs/benchmark.md, section 5). Each cell balance, per unit depth:
 //   [F_e - F_w]_advection - [G_e - G_w]_diffusion + k C_P dx dy = S_P dx dy
 // advective flux F = u_j dy C_face (u > 0: upwind side), diffusive flux G = D dA dC/dn
 // (second-order central), inlet face: Dirichlet, walls and outlet: zero diffusive flux,

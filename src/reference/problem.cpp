@@ -1,4 +1,5 @@
-// The reactor problem of a case (spec section 1): parabolic profile with u_max = 2 u_bulk.
+// The reactor problem of a case (docs/benchmark.md, section 1): parabolic profile with
+// u_max = 2 u_bulk.
 #include "adrsph/reference.hpp"
 
 namespace adrsph::reference {

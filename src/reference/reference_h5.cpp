@@ -1,6 +1,6 @@
-// DIR/reference.h5 (spec section 5 output, issue 4): datasets x (nx), y (ny), C (ny x nx,
-// C[j][i] at (x_i, y_j)); scalar attributes D, k, u_bulk, c_in, length, half_width (double)
-// and nx, ny (int) on the root group. HDF5 C API.
+// DIR/reference.h5 (output of docs/benchmark.md, section 5; issue 4): datasets x (nx),
+// y (ny), C (ny x nx, C[j][i] at (x_i, y_j)); scalar attributes D, k, u_bulk, c_in, length,
+// half_width (double) and nx, ny (int) on the root group. HDF5 C API.
 #include <hdf5.h>
 
 #include <stdexcept>

@@ -1,4 +1,5 @@
-// Sampling the cell-centred field at probe points and section averages (spec section 4):
+// Sampling the cell-centred field at probe points and section averages (docs/benchmark.md,
+// section 4):
 // linear between cell centres; between x = 0 and the first centre towards the Dirichlet
 // inlet value; beyond the last centre (outlet) and the outermost rows (walls) the
 // zero-gradient face value, i.e. the adjacent cell value.
@@ -61,7 +62,8 @@ double section_average(const Solution& s, const Problem& p, double x) {
 
 ProbeTable probe_table(const Solution& s, const Problem& p) {
   ProbeTable t;
-  const double y_line = 0.5 * p.half_width;  // the paper's r = +-2.5 mm for R = 5 (spec 4)
+  // The paper's r = +-2.5 mm for R = 5 (docs/benchmark.md, section 4).
+  const double y_line = 0.5 * p.half_width;
   t.x_mm = probe_x_positions(p.length);
   for (double x : t.x_mm) {
     t.c_y0.push_back(sample(s, p, x, 0.0));

@@ -1,5 +1,5 @@
-// Steady solve (spec section 5): first-order upwind matrix A (an M-matrix) factorised or
-// preconditioned once; the limited high-order advective flux is iterated by deferred
+// Steady solve (docs/benchmark.md, section 5): first-order upwind matrix A (an M-matrix)
+// factorised or preconditioned once; the limited high-order advective flux is iterated by deferred
 // correction, A C^{n+1} = b - corr(C^n), until C stops changing. At convergence C solves
 // the full second-order TVD scheme; `residual` measures that directly.
 #include <Eigen/IterativeLinearSolvers>

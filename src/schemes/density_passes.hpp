@@ -6,7 +6,8 @@
 namespace adrsph {
 
 // Conventional scheme: rho_i = m sum_j W_ij (self included), eq. (3) with W for the printed
-// grad W (spec section 2), then p_i and V_i as fluid_pressure() does. Fluid particles only.
+// grad W (docs/benchmark.md, section 2), then p_i and V_i as fluid_pressure() does. Fluid
+// particles only.
 void summation_density(ParticleStore& s, const PassContext& ctx);
 
 // p_i = Tait(rho_i) (+ p_b), eq. (2), and V_i = m / rho_i. Fluid particles only (the boundary

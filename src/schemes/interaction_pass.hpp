@@ -64,7 +64,7 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       const real r2 = dx * dx + dy * dy;
       const real r = std::sqrt(r2) + real(1e-30);
       // One division gives 1/r, 1/(r^2 + eta^2) and 1/(rho_i + rho_j): divisions and the
-      // square root are the slowest operations of the pair (performance-notes).
+      // square root are the slowest operations of the pair (perf/README.md, "Build flags").
       const real reg = r2 + eta2;
       const real rho_sum = Scheme::momentum ? rhoi + static_cast<real>(rho[j]) : real(1);
       const real inv = real(1) / (r * reg * rho_sum);

@@ -3,7 +3,8 @@
 
 namespace adrsph {
 
-// Pressure gradient, Colagrossi form, eq. (6) with the sign restored (spec section 2):
+// Pressure gradient, Colagrossi form, eq. (6) with the sign restored (docs/benchmark.md,
+// section 2):
 //   a_p,i = -(1/rho_i) sum_j V_j (p_i + p_j) grad_i W_ij.
 // Returns the scalar s with a_p,i += s * grad_i W_ij.
 template <class T>

@@ -1,5 +1,5 @@
 // Tait equation of state, eq. (2) of the paper, plus the background pressure p_b of the
-// conventional scheme (spec section 2: p_b = background_pressure * rho0 c0^2).
+// conventional scheme (docs/benchmark.md, section 2: p_b = background_pressure * rho0 c0^2).
 #pragma once
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The species equation, eq. (12) (spec section 3):
+// The species equation, eq. (12) (docs/benchmark.md, section 3):
 //   dC_i/dt = sum_j (m_j rho_i D_i + m_i rho_j D_j)/(rho_i rho_j) (r_ij . grad W)/(r^2+eta^2) (C_i
 //   - C_j)
 //           + C_i sum_j V_j u_ij . grad_i W_ij          (Lagrangian form of -C div u)
