@@ -39,7 +39,8 @@ Case sample_case() {
 }
 
 TEST(RunJson, EveryKey) {
-  const auto j = nlohmann::json::parse(run_json_text(sample_case(), sample_result(), {2, 13.0, 3}));
+  const auto j = nlohmann::json::parse(
+      run_json_text(sample_case(), sample_result(), {2, 13.0, 3, {"species.D=1"}}));
   for (const char* key : test::kRunJsonKeys) EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["case"], "sample");
   EXPECT_EQ(j["case_file"], "cases/sample.toml");
@@ -52,6 +53,7 @@ TEST(RunJson, EveryKey) {
   EXPECT_EQ(j["particles"], 5000);
   EXPECT_EQ(j["fluid_particles"], 4000);
   EXPECT_EQ(j["threads"], 2);
+  EXPECT_EQ(j["overrides"], nlohmann::json::array({"species.D=1"}));
   EXPECT_DOUBLE_EQ(j["t_end"].get<double>(), 10.0);
   EXPECT_DOUBLE_EQ(j["t_reached"].get<double>(), 4.5);
   EXPECT_EQ(j["steps"], 1234);
@@ -102,7 +104,7 @@ TEST(RunJson, NotSteadyAndFailed) {
   r.wall_s = 0.0;
   r.lost_particles = 7;
   r.stations.c_mean[1] = std::nan("");
-  const auto j = nlohmann::json::parse(run_json_text(sample_case(), r, {1, 13.0, 0}));
+  const auto j = nlohmann::json::parse(run_json_text(sample_case(), r, {1, 13.0, 0, {}}));
   EXPECT_TRUE(j["t_steady"].is_null());
   EXPECT_EQ(j["steady"], false);
   EXPECT_EQ(j["status"], "failed");

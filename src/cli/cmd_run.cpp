@@ -261,7 +261,7 @@ int run(const RunOptions& o) {
   SummaryInfo info{threads, wall, stage->final_path(), {}};
   try {
     const auto frames = observer.close_fields();
-    const RunContext ctx{threads, wall, frames.size()};
+    const RunContext ctx{threads, wall, frames.size(), setup.base.overrides};
     info.files = write_outputs(stage->path(), c, r, ctx, frames);
     info.files.push_back("case.toml");
     std::error_code ec;

@@ -75,6 +75,7 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
     stations[x_key(r.stations.x_mm[i])] = number(r.stations.c_mean[i]);
   j["stations"] = stations;
   j["field_frames"] = ctx.field_frames;
+  j["overrides"] = ctx.overrides;
   j["ale"] = c.species.ale;
   j["peak_rss_bytes"] = number(r.peak_rss_bytes);
   j["restarts"] = r.restarts;

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "adrsph/case.hpp"
 #include "adrsph/simulation.hpp"
@@ -14,6 +15,7 @@ struct RunContext {
   int threads = 1;
   double wall_seconds = 0.0;  // used when RunResult::wall_s is 0
   std::size_t field_frames = 0;
+  std::vector<std::string> overrides;  // the --set key=value strings
 };
 
 // The JSON text (pretty-printed, keys in a fixed order):
