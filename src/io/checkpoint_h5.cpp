@@ -1,9 +1,11 @@
 // Checkpoint writer and reader (layout: include/adrsph/io/checkpoint_h5.hpp).
 #include "adrsph/io/checkpoint_h5.hpp"
 
+#include <algorithm>
 #include <span>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 #include "io/h5_arrays.hpp"
 
@@ -92,31 +94,42 @@ ProbeTable unflatten(const std::vector<double>& v, const std::string& file) {
   return p;
 }
 
+// The solver snapshot's fields, listed once for the writer and the reader.
+template <class T>
+using Array = std::vector<T> SolverSnapshot::*;
+constexpr std::pair<const char*, Array<double>> kSolverDoubles[] = {
+    {"x", &SolverSnapshot::x},
+    {"y", &SolverSnapshot::y},
+    {"vx", &SolverSnapshot::vx},
+    {"vy", &SolverSnapshot::vy},
+    {"rho", &SolverSnapshot::rho},
+    {"c", &SolverSnapshot::c},
+    {"inflow_row_tail", &SolverSnapshot::inflow_row_tail},
+    {"phase_seconds", &SolverSnapshot::phase_seconds}};
+constexpr std::pair<const char*, Array<float>> kSolverFloats[] = {{"p", &SolverSnapshot::p},
+                                                                  {"vol", &SolverSnapshot::vol}};
+constexpr std::pair<const char*, double SolverSnapshot::*> kSolverScalars[] = {
+    {"t", &SolverSnapshot::t},
+    {"particle_steps", &SolverSnapshot::particle_steps},
+    {"species_in", &SolverSnapshot::species_in},
+    {"species_out", &SolverSnapshot::species_out}};
+constexpr std::pair<const char*, long SolverSnapshot::*> kSolverCounters[] = {
+    {"steps", &SolverSnapshot::steps},
+    {"lost", &SolverSnapshot::lost},
+    {"lost_reported", &SolverSnapshot::lost_reported},
+    {"rebuilds", &SolverSnapshot::rebuilds},
+    {"entered", &SolverSnapshot::entered},
+    {"left", &SolverSnapshot::left}};
+
 void write_solver(hid_t root, const SolverSnapshot& s, const std::string& file) {
   const auto g = create_group(root, "solver", file);
   const hid_t id = g.get();
-  put(id, "x", s.x, file);
-  put(id, "y", s.y, file);
-  put(id, "vx", s.vx, file);
-  put(id, "vy", s.vy, file);
-  put(id, "rho", s.rho, file);
-  put(id, "c", s.c, file);
-  put(id, "p", s.p, file);
-  put(id, "vol", s.vol, file);
+  for (const auto& [name, field] : kSolverDoubles) put(id, name, s.*field, file);
+  for (const auto& [name, field] : kSolverFloats) put(id, name, s.*field, file);
+  for (const auto& [name, field] : kSolverScalars) write_attribute(id, name, s.*field, file);
+  for (const auto& [name, field] : kSolverCounters) put_long(id, name, s.*field, file);
   put(id, "kind", s.kind, file);
-  put(id, "inflow_row_tail", s.inflow_row_tail, file);
   put(id, "ledger", std::vector<double>(s.ledger.begin(), s.ledger.end()), file);
-  put(id, "phase_seconds", s.phase_seconds, file);
-  write_attribute(id, "t", s.t, file);
-  write_attribute(id, "particle_steps", s.particle_steps, file);
-  write_attribute(id, "species_in", s.species_in, file);
-  write_attribute(id, "species_out", s.species_out, file);
-  put_long(id, "steps", s.steps, file);
-  put_long(id, "lost", s.lost, file);
-  put_long(id, "lost_reported", s.lost_reported, file);
-  put_long(id, "rebuilds", s.rebuilds, file);
-  put_long(id, "entered", s.entered, file);
-  put_long(id, "left", s.left, file);
 }
 
 SolverSnapshot read_solver(hid_t root, const std::string& file) {
@@ -124,31 +137,16 @@ SolverSnapshot read_solver(hid_t root, const std::string& file) {
   const hid_t id = g.get();
   const char* grp = "solver";
   SolverSnapshot s;
-  s.x = get<double>(id, grp, "x", file);
-  s.y = get<double>(id, grp, "y", file);
-  s.vx = get<double>(id, grp, "vx", file);
-  s.vy = get<double>(id, grp, "vy", file);
-  s.rho = get<double>(id, grp, "rho", file);
-  s.c = get<double>(id, grp, "c", file);
-  s.p = get<float>(id, grp, "p", file);
-  s.vol = get<float>(id, grp, "vol", file);
+  for (const auto& [name, field] : kSolverDoubles) s.*field = get<double>(id, grp, name, file);
+  for (const auto& [name, field] : kSolverFloats) s.*field = get<float>(id, grp, name, file);
+  for (const auto& [name, field] : kSolverScalars)
+    s.*field = read_attribute<double>(id, name, file);
+  for (const auto& [name, field] : kSolverCounters) s.*field = get_long(id, name, file);
   s.kind = get<std::uint8_t>(id, grp, "kind", file);
-  s.inflow_row_tail = get<double>(id, grp, "inflow_row_tail", file);
   const auto ledger = get<double>(id, grp, "ledger", file);
   if (ledger.size() != s.ledger.size())
     throw std::runtime_error(file + ": malformed /solver/ledger");
   std::copy(ledger.begin(), ledger.end(), s.ledger.begin());
-  s.phase_seconds = get<double>(id, grp, "phase_seconds", file);
-  s.t = read_attribute<double>(id, "t", file);
-  s.particle_steps = read_attribute<double>(id, "particle_steps", file);
-  s.species_in = read_attribute<double>(id, "species_in", file);
-  s.species_out = read_attribute<double>(id, "species_out", file);
-  s.steps = get_long(id, "steps", file);
-  s.lost = get_long(id, "lost", file);
-  s.lost_reported = get_long(id, "lost_reported", file);
-  s.rebuilds = get_long(id, "rebuilds", file);
-  s.entered = get_long(id, "entered", file);
-  s.left = get_long(id, "left", file);
   return s;
 }
 
