@@ -40,7 +40,7 @@ Case sample_case() {
 
 TEST(RunJson, EveryKey) {
   const auto j = nlohmann::json::parse(
-      run_json_text(sample_case(), sample_result(), {2, 13.0, 3, {"species.D=1"}}));
+      run_json_text(sample_case(), sample_result(), {2, 13.0, 3, {"species.D=1"}, 0.5, 0.75}));
   for (const char* key : test::kRunJsonKeys) EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["case"], "sample");
   EXPECT_EQ(j["case_file"], "cases/sample.toml");
@@ -54,6 +54,8 @@ TEST(RunJson, EveryKey) {
   EXPECT_EQ(j["fluid_particles"], 4000);
   EXPECT_EQ(j["threads"], 2);
   EXPECT_EQ(j["overrides"], nlohmann::json::array({"species.D=1"}));
+  EXPECT_DOUBLE_EQ(j["load_average"]["start"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["load_average"]["end"].get<double>(), 0.75);
   EXPECT_DOUBLE_EQ(j["t_end"].get<double>(), 10.0);
   EXPECT_DOUBLE_EQ(j["t_reached"].get<double>(), 4.5);
   EXPECT_EQ(j["steps"], 1234);
@@ -104,8 +106,10 @@ TEST(RunJson, NotSteadyAndFailed) {
   r.wall_s = 0.0;
   r.lost_particles = 7;
   r.stations.c_mean[1] = std::nan("");
-  const auto j = nlohmann::json::parse(run_json_text(sample_case(), r, {1, 13.0, 0, {}}));
+  const auto j =
+      nlohmann::json::parse(run_json_text(sample_case(), r, {1, 13.0, 0, {}, -1.0, -1.0}));
   EXPECT_TRUE(j["t_steady"].is_null());
+  EXPECT_TRUE(j["load_average"]["start"].is_null());
   EXPECT_EQ(j["steady"], false);
   EXPECT_EQ(j["status"], "failed");
   EXPECT_EQ(j["message"], "non-finite density at t = 0.1 s");

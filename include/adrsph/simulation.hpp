@@ -33,6 +33,7 @@ struct Progress {
   double wall_s = 0.0;
   double steps_per_s = 0.0;
   double eta_s = 0.0;          // estimated wall seconds to t_end
+  double eta_steady_s = -1.0;  // to the earliest time the steady test may stop the run (-1: none)
   double steady_change = 0.0;  // last probe change measure (see time.steady_tol)
 };
 

@@ -3,10 +3,10 @@
 #include <omp.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -78,6 +78,12 @@ std::vector<std::string> write_outputs(const fs::path& dir, const Case& c, const
     files.push_back("fields.xmf");
   }
   return files;
+}
+
+// The machine's 1-minute load average, -1 when unknown.
+double load_average() {
+  double load[1];
+  return ::getloadavg(load, 1) == 1 ? load[0] : -1.0;
 }
 
 std::string read_text(const fs::path& file) {
@@ -221,6 +227,7 @@ int run(const RunOptions& o) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   const auto t0 = std::chrono::steady_clock::now();
+  const double load_start = load_average();
   RunResult r;
   try {
     r = run_simulation(c, observer, setup.resume ? &setup.base.state : nullptr);
@@ -261,7 +268,8 @@ int run(const RunOptions& o) {
   SummaryInfo info{threads, wall, stage->final_path(), {}};
   try {
     const auto frames = observer.close_fields();
-    const RunContext ctx{threads, wall, frames.size(), setup.base.overrides};
+    const RunContext ctx{threads,    wall,          frames.size(), setup.base.overrides,
+                         load_start, load_average()};
     info.files = write_outputs(stage->path(), c, r, ctx, frames);
     info.files.push_back("case.toml");
     std::error_code ec;

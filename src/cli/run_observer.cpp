@@ -16,9 +16,16 @@ std::string format_hms(double seconds) {
 }
 
 std::string format_progress(const Progress& p) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "t = %.3f/%g s  step %ld  %.0f steps/s  ETA %s", p.t, p.t_end,
-                p.step, p.steps_per_s, format_hms(p.eta_s).c_str());
+  char buf[200];
+  if (p.eta_steady_s >= 0)  // the steady test cannot stop the run before t_min
+    std::snprintf(buf, sizeof buf,
+                  "t = %.3f/%g s  step %ld  %.0f steps/s  ETA %s (earliest steady stop), %s to "
+                  "t_end",
+                  p.t, p.t_end, p.step, p.steps_per_s, format_hms(p.eta_steady_s).c_str(),
+                  format_hms(p.eta_s).c_str());
+  else
+    std::snprintf(buf, sizeof buf, "t = %.3f/%g s  step %ld  %.0f steps/s  ETA %s", p.t, p.t_end,
+                  p.step, p.steps_per_s, format_hms(p.eta_s).c_str());
   return buf;
 }
 
@@ -46,7 +53,7 @@ void CliObserver::on_progress(const Progress& p) {
   if (printed_ && now - last_print_ < std::chrono::milliseconds(250)) return;
   last_print_ = now;
   // Pad to overwrite a longer previous line.
-  std::fprintf(stderr, "\r%-72s", format_progress(p).c_str());
+  std::fprintf(stderr, "\r%-100s", format_progress(p).c_str());
   std::fflush(stderr);
   printed_ = true;
 }

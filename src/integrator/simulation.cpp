@@ -251,6 +251,9 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
       pr.steps_per_s = (pr.step - (resume ? resume->solver.steps : 0)) /
                        std::max(omp_get_wtime() - wall_start, 1e-9);
       pr.eta_s = (c.time.t_end - t) / dt / std::max(pr.steps_per_s, 1e-9);
+      const double t_min = steady.criterion().t_min;
+      if (c.time.stop_when_steady && t < t_min && t_min < c.time.t_end)
+        pr.eta_steady_s = (t_min - t) / dt / std::max(pr.steps_per_s, 1e-9);
       pr.steady_change = steady.update(t, last_probes);
       result.history.push_back({t, stations_from(last_probes, length).c_mean, pr.steady_change});
       observer.on_progress(pr);

@@ -76,6 +76,9 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["stations"] = stations;
   j["field_frames"] = ctx.field_frames;
   j["overrides"] = ctx.overrides;
+  // Wall times mean little without the machine's load: a busy machine slows a run.
+  j["load_average"] = Json{{"start", ctx.load_start >= 0 ? Json(ctx.load_start) : Json(nullptr)},
+                           {"end", ctx.load_end >= 0 ? Json(ctx.load_end) : Json(nullptr)}};
   j["ale"] = c.species.ale;
   j["peak_rss_bytes"] = number(r.peak_rss_bytes);
   j["restarts"] = r.restarts;

@@ -15,7 +15,8 @@ struct RunContext {
   int threads = 1;
   double wall_seconds = 0.0;  // used when RunResult::wall_s is 0
   std::size_t field_frames = 0;
-  std::vector<std::string> overrides;  // the --set key=value strings
+  std::vector<std::string> overrides;         // the --set key=value strings
+  double load_start = -1.0, load_end = -1.0;  // 1-minute load average of the machine (-1: unknown)
 };
 
 // The JSON text (pretty-printed, keys in a fixed order):
