@@ -8,6 +8,8 @@ draws both sets of contour lines on one channel (docs/benchmark.md, section 4). 
 omitted to draw the other alone.
 
 usage: plot_contours.py [--run RUN_DIR] [--ref REF_DIR] [--out FILE.png] [--levels N]
+
+The drawing is also a library: contour_figure() / draw_contours() (tools/study_report.py).
 """
 import argparse
 import os
@@ -33,7 +35,7 @@ def read_last_frame(run_dir):
     with h5py.File(path, "r") as f:
         frames = sorted(k for k in f.keys() if k.startswith("frame_"))
         if not frames:
-            sys.exit(f"{path}: no /frame_NNNNNN groups")
+            raise ValueError(f"{path}: no /frame_NNNNNN groups")
         g = f[frames[-1]]
         fluid = g["kind"][:] == 0
         t = g.attrs.get("time", float("nan"))
@@ -48,6 +50,58 @@ def sph_on_grid(xp, yp, cp, xg, yg):
     return np.ma.filled(interp(X, Y).astype(float), np.nan)
 
 
+def draw_contours(ax, run_dir=None, ref_dir=None, levels=10, stride=4, run_label=None):
+    """Draws the reference (black) and the SPH (red, dashed) contour lines of C on `ax`.
+
+    Either directory may be None. `run_label` names the SPH lines in the legend (default: the
+    frame name). Returns (legend handles, reference attributes).
+    """
+    if ref_dir:
+        xr, yr, cr, attrs = read_reference(ref_dir)
+    else:
+        xr = np.linspace(0.25, 99.75, 200)
+        yr = np.linspace(-4.95, 4.95, 40)
+        cr, attrs = None, {}
+    xg, yg = xr[::stride], yr[:: max(1, stride // 2)]
+
+    c_in = float(attrs.get("c_in", 2.0))
+    level_values = np.linspace(0.0, c_in, levels + 2)[1:-1]
+    handles = []
+    if cr is not None:
+        cs = ax.contour(xr, yr, cr, levels=level_values, colors="k", linewidths=1.0)
+        ax.clabel(cs, fmt="%.2f", fontsize=7)
+        handles.append(plt.Line2D([], [], color="k", label="reference (FV)"))
+    if run_dir:
+        xp, yp, cp, t, name = read_last_frame(run_dir)
+        cg = sph_on_grid(xp, yp, cp, xg, yg)
+        ax.contour(xg, yg, cg, levels=level_values, colors="tab:red", linewidths=1.0,
+                   linestyles="--")
+        handles.append(plt.Line2D([], [], color="tab:red", ls="--",
+                                  label=f"SPH ({run_label or name}, t = {t:.3g} s)"))
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_aspect("auto")
+    return handles, attrs
+
+
+def contour_figure(out, run_dir=None, ref_dir=None, levels=10, stride=4, run_label=None,
+                   title=None):
+    """Writes the contour plot (SPH against the reference) to the PNG `out`."""
+    fig, ax = plt.subplots(figsize=(11, 3.2), dpi=130)
+    try:
+        handles, attrs = draw_contours(ax, run_dir, ref_dir, levels, stride, run_label)
+        if title is None:
+            title = "steady C contours"
+            if "D" in attrs:
+                title += f", D = {float(attrs['D']):g} mm^2/s"
+        ax.set_title(title)
+        ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8)
+        fig.tight_layout()
+        fig.savefig(out)
+    finally:
+        plt.close(fig)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--run", help="run directory holding fields.h5")
@@ -58,40 +112,10 @@ def main():
     args = ap.parse_args()
     if not args.run and not args.ref:
         ap.error("give --run, --ref or both")
-
-    fig, ax = plt.subplots(figsize=(11, 3.2), dpi=130)
-    if args.ref:
-        xr, yr, cr, attrs = read_reference(args.ref)
-    else:
-        xr = np.linspace(0.25, 99.75, 200)
-        yr = np.linspace(-4.95, 4.95, 40)
-        cr, attrs = None, {}
-    xg, yg = xr[:: args.stride], yr[:: max(1, args.stride // 2)]
-
-    c_in = float(attrs.get("c_in", 2.0))
-    levels = np.linspace(0.0, c_in, args.levels + 2)[1:-1]
-    handles = []
-    if cr is not None:
-        cs = ax.contour(xr, yr, cr, levels=levels, colors="k", linewidths=1.0)
-        ax.clabel(cs, fmt="%.2f", fontsize=7)
-        handles.append(plt.Line2D([], [], color="k", label="reference (FV)"))
-    if args.run:
-        xp, yp, cp, t, name = read_last_frame(args.run)
-        cg = sph_on_grid(xp, yp, cp, xg, yg)
-        ax.contour(xg, yg, cg, levels=levels, colors="tab:red", linewidths=1.0,
-                   linestyles="--")
-        handles.append(plt.Line2D([], [], color="tab:red", ls="--",
-                                  label=f"SPH ({name}, t = {t:.3g} s)"))
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
-    ax.set_aspect("auto")
-    title = "steady C contours"
-    if "D" in attrs:
-        title += f", D = {float(attrs['D']):g} mm^2/s"
-    ax.set_title(title)
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8)
-    fig.tight_layout()
-    fig.savefig(args.out)
+    try:
+        contour_figure(args.out, args.run, args.ref, args.levels, args.stride)
+    except (ValueError, OSError, KeyError) as e:
+        sys.exit(str(e))
     print(f"wrote {args.out}")
 
 

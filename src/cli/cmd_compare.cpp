@@ -2,7 +2,6 @@
 // section 4; issue 4). Relative error along the three probe lines (CSV + PNG, figures 3-5) and of
 // the section averages at x = 25, 50, 100 beside the paper's table 3 (Markdown, also printed).
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,10 +11,7 @@
 #include "adrsph/probes.hpp"
 #include "analysis/compare.hpp"
 #include "cli/commands.hpp"
-
-#ifndef ADRSPH_TOOLS_DIR
-#define ADRSPH_TOOLS_DIR "tools"
-#endif
+#include "cli/python_tools.hpp"
 
 namespace adrsph::cli {
 namespace {
@@ -28,28 +24,8 @@ struct CompareOptions {
   bool plot = true;
 };
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return q + "'";
-}
-
-// A Python 3 with matplotlib: $ADRSPH_PYTHON, else python3 on PATH, else /usr/bin/python3
-// (Debian's, where python3-matplotlib installs). Empty if none.
-std::string find_plotting_python() {
-  std::vector<std::string> candidates;
-  if (const char* env = std::getenv("ADRSPH_PYTHON")) candidates.emplace_back(env);
-  candidates.emplace_back("python3");
-  candidates.emplace_back("/usr/bin/python3");
-  for (const std::string& py : candidates) {
-    const std::string probe = shell_quote(py) + " -c 'import matplotlib, numpy' >/dev/null 2>&1";
-    if (std::system(probe.c_str()) == 0) return py;
-  }
-  return {};
-}
-
 void plot_errors(const fs::path& csv, const fs::path& png, const std::string& title) {
-  const fs::path script = fs::path(ADRSPH_TOOLS_DIR) / "plot_errors.py";
+  const fs::path script = tools_dir() / "plot_errors.py";
   if (!fs::exists(script)) {
     std::printf("plot: %s not found; no PNG\n", script.c_str());
     return;

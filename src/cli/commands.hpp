@@ -21,5 +21,6 @@ struct Command {
 Command register_run(CLI::App& app);
 Command register_reference(CLI::App& app);
 Command register_compare(CLI::App& app);
+Command register_study(CLI::App& app);
 
 }  // namespace adrsph::cli

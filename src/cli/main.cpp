@@ -7,9 +7,9 @@ int main(int argc, char** argv) {
   CLI::App app{"adrsph: advection-diffusion-reaction of a species with SPH"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "adrsph 0.1.0");
-  const adrsph::cli::Command commands[] = {adrsph::cli::register_run(app),
-                                           adrsph::cli::register_reference(app),
-                                           adrsph::cli::register_compare(app)};
+  const adrsph::cli::Command commands[] = {
+      adrsph::cli::register_run(app), adrsph::cli::register_reference(app),
+      adrsph::cli::register_compare(app), adrsph::cli::register_study(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

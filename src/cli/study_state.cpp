@@ -1,0 +1,141 @@
+// Reading and writing the study's files in its runs directory.
+#include "cli/study_state.hpp"
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace adrsph::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+std::optional<Json> read_json(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  Json j = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object()) return std::nullopt;
+  return j;
+}
+
+void write_json(const fs::path& file, const Json& j) {
+  fs::path tmp = file;
+  tmp += ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+  }
+  fs::rename(tmp, file);
+}
+
+double number_or(const Json& j, const char* key, double fallback) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_number() ? it->get<double>() : fallback;
+}
+
+}  // namespace
+
+RunFiles run_files(const fs::path& runs_dir, const std::string& name) {
+  RunFiles f;
+  f.dir = runs_dir / name;
+  f.partial = runs_dir / (name + ".partial");
+  f.checkpoint = f.partial / "checkpoint.h5";
+  f.args = runs_dir / (name + ".args.json");
+  f.log = runs_dir / (name + ".log");
+  return f;
+}
+
+RunState run_state(const RunFiles& f) {
+  std::error_code ec;
+  if (fs::exists(f.checkpoint, ec)) return RunState::resume;
+  const std::string status = read_run_record(f.dir).status;
+  return status == "ok" || status == "failed" ? RunState::done : RunState::fresh;
+}
+
+const char* to_string(RunState s) {
+  switch (s) {
+    case RunState::fresh:
+      return "new";
+    case RunState::resume:
+      return "resume";
+    case RunState::done:
+      return "done";
+  }
+  return "?";
+}
+
+bool run_present(const RunFiles& f) {
+  std::error_code ec;
+  return fs::exists(f.dir, ec) || fs::exists(f.partial, ec) || fs::exists(f.args, ec) ||
+         fs::exists(f.log, ec);
+}
+
+RunRecord read_run_record(const fs::path& run_dir) {
+  RunRecord r;
+  const auto j = read_json(run_dir / "run.json");
+  if (!j) return r;
+  if (const auto it = j->find("status"); it != j->end() && it->is_string())
+    r.status = it->get<std::string>();
+  if (const auto it = j->find("message"); it != j->end() && it->is_string())
+    r.message = it->get<std::string>();
+  r.wall_seconds = number_or(*j, "wall_seconds", 0.0);
+  r.t_reached = number_or(*j, "t_reached", 0.0);
+  if (const auto it = j->find("t_steady"); it != j->end() && it->is_number())
+    r.t_steady = it->get<double>();
+  return r;
+}
+
+void write_run_args(const fs::path& file, const std::vector<std::string>& argv,
+                    const RunArgs& args) {
+  Json j;
+  j["argv"] = argv;
+  j["case"] = args.case_file;
+  j["sets"] = args.sets;
+  write_json(file, j);
+}
+
+std::optional<RunArgs> read_run_args(const fs::path& file) {
+  const auto j = read_json(file);
+  if (!j) return std::nullopt;
+  RunArgs a;
+  try {
+    a.case_file = j->at("case").get<std::string>();
+    a.sets = j->at("sets").get<std::vector<std::string>>();
+  } catch (const Json::exception&) {
+    return std::nullopt;
+  }
+  return a;
+}
+
+void write_study_json(const fs::path& runs_dir, const std::string& name,
+                      const std::string& study_file, const std::vector<StudyJsonRun>& runs) {
+  Json j;
+  j["name"] = name;
+  j["study_file"] = study_file;
+  Json list = Json::array();
+  std::map<std::string, double> references;  // Pe label -> Pe, each once
+  Json refs = Json::array();
+  for (const StudyJsonRun& r : runs) {
+    const std::string ref_dir = "reference/pe" + r.run->pe_label;
+    Json e;
+    e["name"] = r.run->name;
+    e["group"] = r.run->group;
+    e["dir"] = r.run->name;  // relative to the runs directory, like "reference"
+    e["reference"] = ref_dir;
+    e["sets"] = r.run->sets;
+    e["Pe"] = r.run->pe;
+    e["status"] = r.status;
+    if (!r.message.empty()) e["message"] = r.message;
+    list.push_back(e);
+    if (references.emplace(r.run->pe_label, r.run->pe).second)
+      refs.push_back(Json{{"Pe", r.run->pe}, {"dir", ref_dir}});
+  }
+  j["runs"] = list;
+  j["references"] = refs;
+  write_json(runs_dir / "study.json", j);
+}
+
+}  // namespace adrsph::cli

@@ -1,0 +1,58 @@
+// What a study's runs directory says about each run, and the files the study keeps there:
+// RUNS_DIR/<name>/ (the run), <name>.partial/checkpoint.h5 (an interrupted run),
+// <name>.args.json (the run's arguments when first started), <name>.log, study.json.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/study_plan.hpp"
+
+namespace adrsph::cli {
+
+struct RunFiles {
+  std::filesystem::path dir, partial, checkpoint, args, log;
+};
+RunFiles run_files(const std::filesystem::path& runs_dir, const std::string& name);
+
+enum class RunState {
+  fresh,   // nothing usable on disk: start it
+  resume,  // <name>.partial/checkpoint.h5: continue it with `run --restart`
+  done,    // run.json with status "ok" or "failed", and no checkpoint
+};
+RunState run_state(const RunFiles& f);
+const char* to_string(RunState s);  // "new", "resume", "done"
+// Anything of the run on disk (its directory, staging directory, arguments or log).
+bool run_present(const RunFiles& f);
+
+// The run.json fields the study prints. `status` is empty when there is no readable run.json.
+struct RunRecord {
+  std::string status, message;
+  double wall_seconds = 0, t_reached = 0;
+  std::optional<double> t_steady;
+};
+RunRecord read_run_record(const std::filesystem::path& run_dir);
+
+// <name>.args.json: {"argv": [...], "case": "...", "sets": [...]}. The case and sets say
+// what the run computes; argv (with this executable and --threads) is for the record.
+struct RunArgs {
+  std::string case_file;
+  std::vector<std::string> sets;
+};
+void write_run_args(const std::filesystem::path& file, const std::vector<std::string>& argv,
+                    const RunArgs& args);
+std::optional<RunArgs> read_run_args(const std::filesystem::path& file);
+
+// One line of study.json's "runs".
+struct StudyJsonRun {
+  const analysis::StudyRun* run;
+  std::string status;   // "done", "failed", "pending", "interrupted"
+  std::string message;  // why it failed, when run.json does not say
+};
+// Writes RUNS_DIR/study.json (through a temporary file: the report may be reading it).
+void write_study_json(const std::filesystem::path& runs_dir, const std::string& name,
+                      const std::string& study_file, const std::vector<StudyJsonRun>& runs);
+
+}  // namespace adrsph::cli
