@@ -49,7 +49,7 @@ void error(const std::string& what) {
 
 // Set by SIGINT/SIGTERM; the run loop asks for a checkpoint and stops at the next rebuild.
 volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_stop_signal(int sig) {
+extern "C" void run_on_stop_signal(int sig) {
   g_stop_signal = sig;
 }
 
@@ -224,8 +224,8 @@ int run(const RunOptions& o) {
                                  setup.base, c.output.checkpoint_minutes);
 
   g_stop_signal = 0;
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGINT, run_on_stop_signal);
+  std::signal(SIGTERM, run_on_stop_signal);
   const auto t0 = std::chrono::steady_clock::now();
   const double load_start = load_average();
   RunResult r;

@@ -160,6 +160,15 @@ int run_study_command(const StudyOptions& o) {
     print_table(runs, selected, runs_dir, case_file);
     return kExitOk;
   }
+  if (o.resume) {
+    try {
+      for (const std::string& name : restore_from_report(runs_dir, report_dir, runs))
+        std::printf("%s: done, restored from the report %s\n", name.c_str(),
+                    (report_dir / "runs" / name).c_str());
+    } catch (const std::exception& e) {
+      return error(e.what());
+    }
+  }
   const auto present = std::find_if(runs.begin(), runs.end(), [&](const StudyRun& r) {
     return run_present(run_files(runs_dir, r.name));
   });

@@ -12,6 +12,7 @@
 #include <set>
 
 #include "cli/child_process.hpp"
+#include "cli/commands.hpp"
 #include "cli/run_observer.hpp"
 #include "cli/study_state.hpp"
 
@@ -22,7 +23,6 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 constexpr auto kNoteEvery = std::chrono::seconds(60);
 constexpr int kExitIoError = 1;
-constexpr int kExitInterrupted = 4;  // `adrsph run` after writing its checkpoint
 
 // One line of the study's own output, flushed: it is often redirected to a file.
 void say(const std::string& line) {

@@ -73,6 +73,24 @@ bool run_present(const RunFiles& f) {
          fs::exists(f.log, ec);
 }
 
+std::vector<std::string> restore_from_report(const fs::path& runs_dir, const fs::path& report_dir,
+                                             const std::vector<analysis::StudyRun>& runs) {
+  std::vector<std::string> restored;
+  for (const analysis::StudyRun& r : runs) {
+    const RunFiles f = run_files(runs_dir, r.name);
+    const fs::path copy = report_dir / "runs" / r.name;
+    if (run_present(f) || read_run_record(copy).status.empty()) continue;
+    std::error_code ec;
+    fs::create_directories(f.dir.parent_path(), ec);
+    fs::copy(copy, f.dir, fs::copy_options::recursive, ec);
+    if (ec)
+      throw std::runtime_error("cannot restore " + r.name + " from " + copy.string() + ": " +
+                               ec.message());
+    restored.push_back(r.name);
+  }
+  return restored;
+}
+
 RunRecord read_run_record(const fs::path& run_dir) {
   RunRecord r;
   const auto j = read_json(run_dir / "run.json");

@@ -27,6 +27,15 @@ const char* to_string(RunState s);  // "new", "resume", "done"
 // Anything of the run on disk (its directory, staging directory, arguments or log).
 bool run_present(const RunFiles& f);
 
+// A study continued on another machine finds its runs directory empty, but the committed
+// report keeps a copy of every done run's small files (REPORT_DIR/runs/<name>/: run.json,
+// probes.csv, stations.csv, history.csv, compare.csv). Copies them back into RUNS_DIR/<name>
+// for each run that has nothing on disk, so that it is not computed again (its fields.h5 is
+// not in the report: contour plots need a run made on this machine). Returns the names.
+std::vector<std::string> restore_from_report(const std::filesystem::path& runs_dir,
+                                             const std::filesystem::path& report_dir,
+                                             const std::vector<analysis::StudyRun>& runs);
+
 // The run.json fields the study prints. `status` is empty when there is no readable run.json.
 struct RunRecord {
   std::string status, message;
