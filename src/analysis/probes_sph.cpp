@@ -5,6 +5,10 @@
 
 namespace adrsph {
 
+namespace {
+constexpr auto kWall = static_cast<std::uint8_t>(Kind::wall);
+}  // namespace
+
 double ProbeSampler::concentration_at(double x, double y) const {
   const int cx = grid.cell_x(x), cy = grid.cell_y(y);
   double num = 0.0, den = 0.0;
@@ -14,8 +18,10 @@ double ProbeSampler::concentration_at(double x, double y) const {
       if (r < 0) continue;
       for (std::uint32_t j = grid.cell_start(r); j < grid.cell_start(r + 1); ++j) {
         const double rx = x - particles.x[j], ry = y - particles.y[j];
-        const double w = particles.c_mask[j] * particles.vol[j] *
-                         kernel.value(std::sqrt(rx * rx + ry * ry));
+        // Every particle that carries species: fluid and both buffers (the outflow buffer
+        // holds the C its particles carried through x = L, a zero-gradient continuation).
+        if (particles.kind[j] == kWall) continue;
+        const double w = particles.vol[j] * kernel.value(std::sqrt(rx * rx + ry * ry));
         num += w * particles.c[j];
         den += w;
       }

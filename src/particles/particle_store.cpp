@@ -30,20 +30,20 @@ std::size_t bytes_of(const Arrays&... arrays) {
 }  // namespace
 
 void ParticleStore::reserve(std::size_t n) {
-  reserve_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, c_mask, fluid_side, ax, ay, drho, dc, sx,
-              sy, x0, y0, vx0, vy0, rho0, c0, scratch_, scratch_f_, scratch_k_);
+  reserve_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, diffusion_mask, fluid_side, ax, ay, drho,
+              dc, sx, sy, x0, y0, vx0, vy0, rho0, c0, scratch_, scratch_f_, scratch_k_);
 }
 
 std::size_t ParticleStore::bytes() const {
-  return bytes_of(x, y, vx, vy, rho, c, kind, p, vol, c_mask, fluid_side, ax, ay, drho, dc, sx, sy,
-                  x0, y0, vx0, vy0, rho0, c0, scratch_, scratch_f_, scratch_k_);
+  return bytes_of(x, y, vx, vy, rho, c, kind, p, vol, diffusion_mask, fluid_side, ax, ay, drho, dc,
+                  sx, sy, x0, y0, vx0, vy0, rho0, c0, scratch_, scratch_f_, scratch_k_);
 }
 
 void ParticleStore::resize(std::size_t n) {
   if (n + 1 > x.capacity()) reserve(n + n / 32 + 64);
   n_ = n;
-  resize_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, c_mask, fluid_side, ax, ay, drho, dc, sx,
-             sy, x0, y0, vx0, vy0, rho0, c0);
+  resize_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, diffusion_mask, fluid_side, ax, ay, drho,
+             dc, sx, sy, x0, y0, vx0, vy0, rho0, c0);
   reset_padding();
 }
 
@@ -56,7 +56,7 @@ void ParticleStore::reset_padding() {
   kind[k] = static_cast<std::uint8_t>(Kind::wall);
   p[k] = 0.0f;
   vol[k] = 0.0f;
-  c_mask[k] = 0.0f;
+  diffusion_mask[k] = 0.0f;
   fluid_side[k] = 0.0f;
 }
 
@@ -81,7 +81,7 @@ void ParticleStore::permute(std::span<const std::uint32_t> order) {
   scratch_f_.reserve(cap);
   scratch_k_.reserve(cap);
   for (auto* a : {&x, &y, &vx, &vy, &rho, &c}) permute_array(*a, order, scratch_);
-  for (auto* a : {&p, &vol, &c_mask, &fluid_side}) permute_array(*a, order, scratch_f_);
+  for (auto* a : {&p, &vol, &diffusion_mask, &fluid_side}) permute_array(*a, order, scratch_f_);
   permute_array(kind, order, scratch_k_);
   n_ = order.size();
   // Rates and saved state are recomputed every step: only their size must follow.

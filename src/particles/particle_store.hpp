@@ -22,9 +22,13 @@ struct ParticleStore {
   // evaluation from the double state and only ever enter it multiplied by dt, so their
   // rounding (6e-8 relative) stays far below the discretisation error (perf/README.md,
   // "float storage"); halving them saves 40 bytes per particle.
-  std::vector<float> p;           // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
-  std::vector<float> vol;         // V = m / rho [mm^2]
-  std::vector<float> c_mask;      // 1 where the particle carries species (not a wall), else 0
+  std::vector<float> p;    // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
+  std::vector<float> vol;  // V = m / rho [mm^2]
+  // 1 where the particle exchanges species by diffusion: fluid and the inflow buffer (the
+  // Dirichlet inlet, C = c_in). 0 for walls (no flux through them) and the outflow buffer
+  // (zero diffusive flux through the outlet plane: the zero-gradient outlet of
+  // docs/benchmark.md, section 1, held exactly because the pair fluxes are antisymmetric).
+  std::vector<float> diffusion_mask;
   std::vector<float> fluid_side;  // 1 for fluid and outlet particles (what boundaries sample)
   // Rates of one evaluation (fluid particles only).
   std::vector<float> ax, ay, drho, dc;
@@ -71,7 +75,7 @@ struct ParticleStore {
   // Keep the masks in step with kind[i] after a kind change.
   void set_kind(std::size_t i, Kind k) {
     kind[i] = static_cast<std::uint8_t>(k);
-    c_mask[i] = k == Kind::wall ? 0.0f : 1.0f;
+    diffusion_mask[i] = (k == Kind::fluid || k == Kind::inlet) ? 1.0f : 0.0f;
     fluid_side[i] = (k == Kind::fluid || k == Kind::outlet) ? 1.0f : 0.0f;
   }
 

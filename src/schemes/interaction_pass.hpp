@@ -4,6 +4,7 @@
 // Gather form: each thread writes only its own particle i; no atomics.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "schemes/continuity.hpp"
@@ -33,7 +34,8 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
   const float* p = s.p.data();
   const float* vol = s.vol.data();
   const double* c = s.c.data();
-  const float* cm = s.c_mask.data();
+  const float* dmask = s.diffusion_mask.data();
+  const float* fside = s.fluid_side.data();
   const std::uint32_t* nb = ctx.neighbours.data();
   // Local copies: the stores of the rates below may alias references, and g++ then reloads
   // them inside the loops (2x slower, measured on the summation density).
@@ -93,9 +95,11 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       }
       const real c_ji = static_cast<real>(c[j] - ci_d);
       if constexpr (Diffuse)
-        cdiff += species_diffusion_pair(diffusivity, voli, volj, lap_weight, -c_ji, cm[j]);
+        cdiff += species_diffusion_pair(diffusivity, voli, volj, lap_weight, -c_ji, dmask[j]);
       if constexpr (Ale && Scheme::shifting) {
-        const real dc = cm[j] * volj * c_ji;  // grad C_i = sum_j V_j (C_j - C_i) grad W
+        // grad C_i = sum_j V_j (C_j - C_i) grad W over the particles that carry species:
+        // fluid, inflow buffer (diffusion_mask) and outflow buffer (fluid_side).
+        const real dc = std::max(dmask[j], fside[j]) * volj * c_ji;
         cgx += dc * gwx;
         cgy += dc * gwy;
       }

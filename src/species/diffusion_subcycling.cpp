@@ -19,7 +19,7 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
   const double* x = s.x.data();
   const double* y = s.y.data();
   const float* vol = s.vol.data();
-  const float* cm = s.c_mask.data();
+  const float* dmask = s.diffusion_mask.data();
   const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.diffusivity;
   const QuinticKernel kernel = ctx.kernel;  // local copy: see interaction_pass.hpp
   float* w = weight_.data();
@@ -36,7 +36,7 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
       const double lap_weight = kernel.derivative(r) * r / (r2 + eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
       w[k] = static_cast<float>(
-          species_diffusion_pair<double>(diffusivity, voli, vol[j], lap_weight, 1.0, cm[j]));
+          species_diffusion_pair<double>(diffusivity, voli, vol[j], lap_weight, 1.0, dmask[j]));
     }
   }
 }

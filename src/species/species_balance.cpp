@@ -21,7 +21,7 @@ double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& c
       const double dx = s.x[i] - s.x[j], dy = s.y[i] - s.y[j], r2 = dx * dx + dy * dy;
       const double lap_weight = ctx.kernel.gradient_factor(std::sqrt(r2)) * r2 / (r2 + eta2);
       rate += species_diffusion_pair<double>(ctx.phys.diffusivity, s.vol[i], s.vol[j], lap_weight,
-                                             s.c[i] - s.c[j], s.c_mask[j]);
+                                             s.c[i] - s.c[j], s.diffusion_mask[j]);
     }
     total += s.vol[i] * rate;
   }

@@ -11,11 +11,13 @@
 namespace adrsph {
 
 // Diffusion pair term with uniform D: (m_j/rho_j + m_i/rho_i) D lap_weight (C_i - C_j).
-// Walls carry no species (c_mask_j = 0): no flux through them, exactly.
+// Walls and the outflow buffer take no part (diffusion_mask_j = 0): no flux through the walls or
+// the outlet plane, exactly (particle_store.hpp).
 // `c_ij` = C_i - C_j (taken in double by the callers).
 template <class T>
-inline T species_diffusion_pair(T diffusivity, T vol_i, T vol_j, T lap_weight, T c_ij, T c_mask_j) {
-  return c_mask_j * diffusivity * (vol_i + vol_j) * lap_weight * c_ij;
+inline T species_diffusion_pair(T diffusivity, T vol_i, T vol_j, T lap_weight, T c_ij,
+                                T diffusion_mask_j) {
+  return diffusion_mask_j * diffusivity * (vol_i + vol_j) * lap_weight * c_ij;
 }
 
 // Sum of V_j u_ij . grad W_ij; times C_i it is the -C div u term.
