@@ -32,6 +32,18 @@ TEST(Overrides, Number) {
   EXPECT_DOUBLE_EQ(lfr({" species.k = 2 "}).species.k, 2.0);     // spaces around
 }
 
+// particles.skin defaults by flow when neither the file nor --set gives it: 0.2 in prescribed
+// flow (lists last several steps), 0.05 otherwise; a given value always wins.
+TEST(Overrides, SkinDefaultFollowsTheFlow) {
+  const auto dir = test::source_dir() / "cases";
+  EXPECT_DOUBLE_EQ(load_case(dir / "default.toml", {}).particles.skin,
+                   Case::Particles::kPrescribedSkin);  // prescribed, no skin in the file
+  EXPECT_DOUBLE_EQ(load_case(dir / "default.toml", {"flow=wcsph"}).particles.skin, 0.05);
+  EXPECT_DOUBLE_EQ(load_case(dir / "default.toml", {"particles.skin=0.1"}).particles.skin, 0.1);
+  // lfr.toml sets 0.05 itself: prescribed flow keeps it
+  EXPECT_DOUBLE_EQ(lfr({"flow=prescribed"}).particles.skin, 0.05);
+}
+
 TEST(Overrides, Integer) {
   EXPECT_EQ(lfr({"time.max_steps=3"}).time.max_steps, 3);
 }

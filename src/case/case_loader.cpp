@@ -120,10 +120,15 @@ Case load_case(const std::filesystem::path& file, const std::vector<std::string>
   c.name = file.stem().string();  // `name` is optional: the file name without .toml
   std::vector<Entry> entries;
   collect(doc, "", name, entries);
+  bool skin_given = false;
+  for (const Entry& e : entries) skin_given = skin_given || e.key == "particles.skin";
   apply_entries(c, std::move(entries), name);
 
   std::set<std::string> overridden;
   for (const auto& o : overrides) overridden.insert(apply_override(c, o));
+  // The list skin's default depends on the flow (case.hpp, Particles::kPrescribedSkin).
+  if (!skin_given && overridden.count("particles.skin") == 0 && c.flow == Flow::prescribed)
+    c.particles.skin = Case::Particles::kPrescribedSkin;
   if (const auto p = case_detail::find_problem(c)) {
     // A value that came from --set is blamed on --set, not on the file.
     const bool from_set = overridden.count(p->key.substr(0, p->key.find('['))) > 0;

@@ -73,7 +73,7 @@ std::vector<double> warm_start(const Case& c, RunObserver& observer, RunResult& 
   pre.time.cfl = std::max(c.time.cfl, 1.0);  // advective limit: particles move <= h per step
   pre.time.dt = 0.0;
   // Steps of up to h make the lists age fast: a larger skin pays (perf/README.md, 3.4).
-  pre.particles.skin = std::max(c.particles.skin, 0.2);
+  pre.particles.skin = std::max(c.particles.skin, Case::Particles::kPrescribedSkin);
   SphSolver solver(pre);
   const double dt = solver.dt_limits().chosen;
   SteadyStateDetector steady(steady_criterion(pre));
