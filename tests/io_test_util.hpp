@@ -128,6 +128,7 @@ inline const std::vector<const char*> kRunJsonKeys = {"case",
                                                       "ale",
                                                       "peak_rss_bytes",
                                                       "restarts",
-                                                      "steady_criterion"};
+                                                      "steady_criterion",
+                                                      "results_version"};
 
 }  // namespace adrsph::test

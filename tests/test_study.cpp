@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "adrsph/simulation.hpp"
 #include "analysis/study_plan.hpp"
 #include "io_test_util.hpp"
 
@@ -245,6 +246,34 @@ TEST(StudyCli, TinyStudyRunsOnceAndResumes) {
     EXPECT_THAT(r.out, HasSubstr("t-pe1000: done, restored from the report"));
     EXPECT_THAT(r.out, Not(HasSubstr("t-pe1000: started")));
     EXPECT_TRUE(fs::exists(runs / "t-pe100000" / "stations.csv"));
+
+    // A run of an engine that computed differently (run.json without the current
+    // results_version) is stale: moved aside and run again, never mixed into the study; the
+    // report's copy of an older engine is not restored either.
+    auto downgrade = [](const fs::path& run_json) {
+      auto j = nlohmann::json::parse(test::read_file(run_json));
+      j.erase("results_version");  // as written before version 2
+      test::write_file(run_json, j.dump(2));
+    };
+    downgrade(runs / "t-pe1000" / "run.json");
+    r = test::run_adrsph("study tiny.toml --resume --dry-run", dir.path());
+    EXPECT_THAT(r.out, HasSubstr("stale"));
+    r = test::run_adrsph("study tiny.toml --resume --only t-pe1000 --report kept_report",
+                         dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_THAT(r.out, HasSubstr("t-pe1000: computed by an engine of another results version"));
+    EXPECT_THAT(r.out, HasSubstr("t-pe1000: started"));
+    EXPECT_TRUE(fs::exists(runs / "stale" / "t-pe1000.v1" / "t-pe1000" / "run.json"));
+    const auto again = nlohmann::json::parse(test::read_file(runs / "t-pe1000" / "run.json"));
+    EXPECT_EQ(again["results_version"], kResultsVersion);
+
+    downgrade(dir / "kept_report" / "runs" / "t-pe100000" / "run.json");
+    fs::remove_all(runs);
+    r = test::run_adrsph("study tiny.toml --resume --only t-pe100000 --report kept_report",
+                         dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_THAT(r.out, Not(HasSubstr("t-pe100000: done, restored")));
+    EXPECT_THAT(r.out, HasSubstr("t-pe100000: started"));
   } else {
     ADD_FAILURE() << "no report written: " << test::read_file(runs / "report.log");
   }

@@ -189,7 +189,9 @@ class Run:
         self.sets = parse_sets(entry.get("sets"))
         self.info = read_json(os.path.join(self.dir, "run.json"))
         info = self.info or {}
-        if self.info is not None:
+        if self.study_status == "stale":  # an older engine's numbers: not part of the study
+            self.state = NOT_RUN
+        elif self.info is not None:
             self.state = DONE if info.get("status") == "ok" else FAILED
         else:
             self.state = FAILED if "fail" in self.study_status.lower() else NOT_RUN

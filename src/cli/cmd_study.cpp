@@ -188,6 +188,21 @@ int run_study_command(const StudyOptions& o) {
   if (!lock_runs_dir(runs_dir))
     return error("another adrsph study is running in " + runs_dir.string());
 
+  // Runs of an engine that computes differently (kResultsVersion) are moved aside and run
+  // again: a study never mixes the numbers of two engines.
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!selected[i] || run_state(run_files(runs_dir, runs[i].name)) != RunState::stale) continue;
+    try {
+      const fs::path to = retire_stale_run(runs_dir, runs[i].name);
+      std::printf(
+          "%s: computed by an engine of another results version (now %d): moved to %s, "
+          "to be run again\n",
+          runs[i].name.c_str(), kResultsVersion, to.c_str());
+    } catch (const std::exception& e) {
+      return error(std::string("cannot move a stale run aside: ") + e.what());
+    }
+  }
+
   StudySetup setup;
   setup.study = &study;
   setup.runs = &runs;

@@ -141,6 +141,10 @@ void StudyRunner::write_json() {
       case RunState::resume:
         e.status = "interrupted";
         break;
+      case RunState::stale:  // a run not selected this time, of an older engine
+        e.status = "stale";
+        e.message = "computed by an engine of another results version; run it again";
+        break;
       case RunState::fresh:
         if (const auto it = failures_.find(R(i).name); it != failures_.end()) {
           e.status = "failed";

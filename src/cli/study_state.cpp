@@ -50,9 +50,27 @@ RunFiles run_files(const fs::path& runs_dir, const std::string& name) {
 
 RunState run_state(const RunFiles& f) {
   std::error_code ec;
-  if (fs::exists(f.checkpoint, ec)) return RunState::resume;
-  const std::string status = read_run_record(f.dir).status;
-  return status == "ok" || status == "failed" ? RunState::done : RunState::fresh;
+  if (fs::exists(f.checkpoint, ec)) {
+    const auto args = read_run_args(f.args);
+    return args && args->results_version != kResultsVersion ? RunState::stale : RunState::resume;
+  }
+  const RunRecord r = read_run_record(f.dir);
+  if (r.status != "ok" && r.status != "failed") return RunState::fresh;
+  return r.results_version == kResultsVersion ? RunState::done : RunState::stale;
+}
+
+fs::path retire_stale_run(const fs::path& runs_dir, const std::string& name) {
+  const RunFiles f = run_files(runs_dir, name);
+  int version = read_run_record(f.dir).results_version;
+  if (!fs::exists(f.dir / "run.json"))
+    if (const auto args = read_run_args(f.args)) version = args->results_version;
+  const std::string base = name + ".v" + std::to_string(version);
+  fs::path to = runs_dir / "stale" / base;
+  for (int k = 2; fs::exists(to); ++k) to = runs_dir / "stale" / (base + "." + std::to_string(k));
+  fs::create_directories(to);
+  for (const fs::path& p : {f.dir, f.partial, f.args, f.log})
+    if (fs::exists(p)) fs::rename(p, to / p.filename());
+  return to;
 }
 
 const char* to_string(RunState s) {
@@ -63,6 +81,8 @@ const char* to_string(RunState s) {
       return "resume";
     case RunState::done:
       return "done";
+    case RunState::stale:
+      return "stale";
   }
   return "?";
 }
@@ -79,7 +99,9 @@ std::vector<std::string> restore_from_report(const fs::path& runs_dir, const fs:
   for (const analysis::StudyRun& r : runs) {
     const RunFiles f = run_files(runs_dir, r.name);
     const fs::path copy = report_dir / "runs" / r.name;
-    if (run_present(f) || read_run_record(copy).status.empty()) continue;
+    const RunRecord saved = read_run_record(copy);
+    if (run_present(f) || saved.status.empty() || saved.results_version != kResultsVersion)
+      continue;  // on disk already, nothing saved, or an older engine's numbers
     std::error_code ec;
     fs::create_directories(f.dir.parent_path(), ec);
     fs::copy(copy, f.dir, fs::copy_options::recursive, ec);
@@ -103,6 +125,8 @@ RunRecord read_run_record(const fs::path& run_dir) {
   r.t_reached = number_or(*j, "t_reached", 0.0);
   if (const auto it = j->find("t_steady"); it != j->end() && it->is_number())
     r.t_steady = it->get<double>();
+  if (const auto it = j->find("results_version"); it != j->end() && it->is_number_integer())
+    r.results_version = it->get<int>();
   return r;
 }
 
@@ -112,6 +136,7 @@ void write_run_args(const fs::path& file, const std::vector<std::string>& argv,
   j["argv"] = argv;
   j["case"] = args.case_file;
   j["sets"] = args.sets;
+  j["results_version"] = args.results_version;
   write_json(file, j);
 }
 
@@ -122,6 +147,7 @@ std::optional<RunArgs> read_run_args(const fs::path& file) {
   try {
     a.case_file = j->at("case").get<std::string>();
     a.sets = j->at("sets").get<std::vector<std::string>>();
+    a.results_version = j->value("results_version", 1);
   } catch (const Json::exception&) {
     return std::nullopt;
   }

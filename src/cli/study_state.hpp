@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "adrsph/simulation.hpp"
 #include "analysis/study_plan.hpp"
 
 namespace adrsph::cli {
@@ -21,11 +22,16 @@ enum class RunState {
   fresh,   // nothing usable on disk: start it
   resume,  // <name>.partial/checkpoint.h5: continue it with `run --restart`
   done,    // run.json with status "ok" or "failed", and no checkpoint
+  stale,   // done or interrupted by an engine of another kResultsVersion: to be run again
 };
 RunState run_state(const RunFiles& f);
-const char* to_string(RunState s);  // "new", "resume", "done"
+const char* to_string(RunState s);  // "new", "resume", "done", "stale"
 // Anything of the run on disk (its directory, staging directory, arguments or log).
 bool run_present(const RunFiles& f);
+// Move a stale run's files to RUNS_DIR/stale/<name>.v<version>[.<k>]/ (kept for comparison,
+// out of the study's way). Returns that directory.
+std::filesystem::path retire_stale_run(const std::filesystem::path& runs_dir,
+                                       const std::string& name);
 
 // A study continued on another machine finds its runs directory empty, but the committed
 // report keeps a copy of every done run's small files (REPORT_DIR/runs/<name>/: run.json,
@@ -41,6 +47,7 @@ struct RunRecord {
   std::string status, message;
   double wall_seconds = 0, t_reached = 0;
   std::optional<double> t_steady;
+  int results_version = 1;  // run.json `results_version` (absent before version 2)
 };
 RunRecord read_run_record(const std::filesystem::path& run_dir);
 
@@ -49,6 +56,7 @@ RunRecord read_run_record(const std::filesystem::path& run_dir);
 struct RunArgs {
   std::string case_file;
   std::vector<std::string> sets;
+  int results_version = kResultsVersion;  // of the engine that started the run (1 if absent)
 };
 void write_run_args(const std::filesystem::path& file, const std::vector<std::string>& argv,
                     const RunArgs& args);

@@ -86,6 +86,7 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
                                {"window", number(r.steady_criterion.window)},
                                {"t_min", number(r.steady_criterion.t_min)}};
   j["version"] = "0.1.0";
+  j["results_version"] = kResultsVersion;
   return j.dump(2) + "\n";
 }
 
