@@ -76,8 +76,8 @@ double SphSolver::species_inventory() const {
 template <class S, bool Ale>
 void SphSolver::bind(bool split) {
   step_fn_ = split ? &SphSolver::step_impl<S, Ale, true> : &SphSolver::step_impl<S, Ale, false>;
-  eval_fn_ =
-      split ? &SphSolver::evaluate_impl<S, Ale, true> : &SphSolver::evaluate_impl<S, Ale, false>;
+  eval_fn_ = split ? &SphSolver::evaluate_at_rest<S, Ale, true>
+                   : &SphSolver::evaluate_at_rest<S, Ale, false>;
 }
 
 std::size_t SphSolver::fluid_count() const {
@@ -107,6 +107,7 @@ void SphSolver::rebuild() {
     monitor_.reset(std::span(store_.x).first(n), std::span(store_.y).first(n));
   }
   moved_abs_ = 0.0;
+  density_predicted_ = false;  // indices changed
   ++rebuilds_;
 }
 
@@ -124,15 +125,40 @@ void SphSolver::sync_for_probes() {
 }
 
 void SphSolver::evaluate() {
+  density_predicted_ = false;
   (this->*eval_fn_)();
+  density_predicted_ = false;  // it predicted for positions no step will produce
+}
+
+template <class S>
+void SphSolver::next_displacement(double a, bool from_start) {
+  const ParticleStore& s = store_;
+  const std::size_t n = s.size();
+  next_dx_.resize(n + 1);
+  next_dy_.resize(n + 1);
+  next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] == kWall || a < 0.0) {
+      next_dx_[i] = next_dy_[i] = 0.0f;
+      continue;
+    }
+    // As advance() moves it (no shifting in this scheme): x_next = base + a u.
+    const double bx = from_start ? s.x0[i] : s.x[i], by = from_start ? s.y0[i] : s.y[i];
+    next_dx_[i] = static_cast<float>(bx + a * s.vx[i] - s.x[i]);
+    next_dy_[i] = static_cast<float>(by + a * s.vy[i] - s.y[i]);
+  }
 }
 
 template <class S, bool Ale, bool Split>
-void SphSolver::evaluate_impl() {
-  const PassContext ctx{kernel_, list_, phys_};
+void SphSolver::evaluate_impl(double a_next, bool from_start) {
+  PassContext ctx{kernel_, list_, phys_};
   if constexpr (S::summation_density) {
     ScopedPhase timer(timers_, Phase::density);
-    summation_density(store_, ctx);
+    density_sum_.resize(store_.size() + 1);
+    summation_density(store_, ctx, density_predicted_ ? density_sum_.data() : nullptr);
+    next_displacement<S>(a_next, from_start);
+    ctx.next_density = {density_sum_.data(), next_dx_.data(), next_dy_.data()};
   }
   if constexpr (S::momentum) {
     if constexpr (!S::summation_density) {
@@ -188,9 +214,12 @@ bool SphSolver::step_impl(double dt) {
     phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
     phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
   }
-  evaluate_impl<S, Ale, Split>();
+  // Stage 1 predicts the density at x + dt/2 u (x0 = x then), stage 2 at x0 + dt u*.
+  evaluate_impl<S, Ale, Split>(0.5 * dt, false);
+  density_predicted_ = S::summation_density && predict_density_;
   advance<S, true>(0.5 * dt);
-  evaluate_impl<S, Ale, Split>();
+  evaluate_impl<S, Ale, Split>(dt, true);
+  density_predicted_ = S::summation_density && predict_density_;
   if (!Split && track_balance_)  // (sub-cycled diffusion accounts for its own exchange)
     ledger_.buffer_exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
   advance<S, false>(dt);
@@ -299,6 +328,7 @@ bool SphSolver::check_state(double dt) {
     // Restore the last good state (start of this step; walls were not advanced).
     for (std::size_t i = 0; i < n; ++i)
       if (s.kind[i] != kWall) s.restore_start(i);
+    density_predicted_ = false;
     return false;
   }
   const double tmax = std::sqrt(tmax2);

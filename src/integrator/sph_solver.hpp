@@ -63,6 +63,9 @@ class SphSolver {
   // Recompute the derived fields (density, pressure, volumes) and rates of the current state
   // without advancing: used by tests and benchmarks.
   void evaluate();
+  // Conventional scheme: take the next summation density in the force pass (default) or in
+  // a pass of its own (for A/B tests and benchmarks; the numbers are the same).
+  void predict_density(bool on) { predict_density_ = on; }
   // Re-sort, feed/drain the buffers and rebuild the neighbour lists.
   void rebuild();
   // Make the cell grid current for probe sampling (re-sort if particles moved > skin/2).
@@ -79,14 +82,31 @@ class SphSolver {
  private:
   template <class S, bool Ale, bool Split>
   bool step_impl(double dt);
+  // a_next: the coming stage's step (prediction at x0 + a_next u; before the first stage,
+  // from_start = false: at x + a_next u); a_next < 0: no prediction wanted.
   template <class S, bool Ale, bool Split>
-  void evaluate_impl();
+  void evaluate_impl(double a_next, bool from_start);
+  template <class S, bool Ale, bool Split>
+  void evaluate_at_rest() {  // evaluate() (a prediction for the current positions, unused)
+    evaluate_impl<S, Ale, Split>(-1.0, 0.0);
+  }
+  // The displacement of the coming stage, next_dx_ = base + a u - x (base: x0, or x when
+  // a_base < 0, before the first stage), as advance() will apply it.
+  template <class S>
+  void next_displacement(double a, bool from_start);
   template <class S, bool Ale>
   void bind(bool split);
   // state = saved state + a * rates; Save: first stage, also saves the start state
   template <class S, bool Save>
   void advance(double a);
   bool check_state(double dt);
+  // The conventional scheme's summation density at the positions of the next evaluation,
+  // taken by the force pass (pass_context.hpp). Valid until the particles are re-sorted or a
+  // step is undone.
+  std::vector<float> density_sum_;
+  std::vector<float> next_dx_, next_dy_;  // displacement of the coming stage (walls 0)
+  bool density_predicted_ = false;
+  bool predict_density_ = true;
 
   Case case_;
   ChannelScene scene_;

@@ -1,8 +1,38 @@
 #include "schemes/density_passes.hpp"
 
+#include <cmath>
+
 namespace adrsph {
 
-void summation_density(ParticleStore& s, const PassContext& ctx) {
+namespace {
+// sum_j W_ij over i's list (self excluded). Single-precision kernel sums, as in the force
+// pass: their rounding (~1e-8 of rho) is far below the summation's own error on disordered
+// particles (~1e-4..1e-3 of rho).
+inline float kernel_sum(std::size_t i, const double* x, const double* y, const std::uint32_t* nb,
+                        const NeighbourList& list, const QuinticKernel& kernel) {
+  const double xi = x[i], yi = y[i];
+  float sum = 0.0f;
+  const std::uint32_t kb = list.begin(i), ke = list.end(i);
+#pragma omp simd reduction(+ : sum)
+  for (std::uint32_t k = kb; k < ke; ++k) {
+    const std::uint32_t j = nb[k];
+    const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
+    sum += kernel.value<float>(std::sqrt(dx * dx + dy * dy));
+  }
+  return sum;
+}
+
+// rho_i = m (W(0) + sum), then p_i (eq. 2) and V_i.
+inline void set_density(ParticleStore& s, std::size_t i, double self, float sum, double mass,
+                        const TaitEos& eos) {
+  const double rhoi = mass * (self + static_cast<double>(sum));
+  s.rho[i] = rhoi;
+  s.p[i] = static_cast<float>(eos.pressure(rhoi));
+  s.vol[i] = static_cast<float>(mass / rhoi);
+}
+}  // namespace
+
+void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted) {
   const std::size_t n = s.size();
   const double* x = s.x.data();
   const double* y = s.y.data();
@@ -15,21 +45,11 @@ void summation_density(ParticleStore& s, const PassContext& ctx) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
-    const double xi = x[i], yi = y[i];
-    // Single-precision kernel sums, as in the force pass: their rounding (~1e-8 of rho) is
-    // far below the summation's own error on disordered particles (~1e-4..1e-3 of rho).
-    float sum = 0.0f;
-    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-#pragma omp simd reduction(+ : sum)
-    for (std::uint32_t k = kb; k < ke; ++k) {
-      const std::uint32_t j = nb[k];
-      const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
-      sum += kernel.value<float>(std::sqrt(dx * dx + dy * dy));
-    }
-    const double rhoi = mass * (self + static_cast<double>(sum));
-    s.rho[i] = rhoi;
-    s.p[i] = static_cast<float>(eos.pressure(rhoi));
-    s.vol[i] = static_cast<float>(mass / rhoi);
+    // A prediction is missing (NaN) for a particle that was in the inflow buffer then.
+    const float sum = predicted && !std::isnan(predicted[i])
+                          ? predicted[i]
+                          : kernel_sum(i, x, y, nb, ctx.neighbours, kernel);
+    set_density(s, i, self, sum, mass, eos);
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "schemes/continuity.hpp"
 #include "schemes/momentum.hpp"
@@ -44,6 +45,11 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
   const real eta2 = static_cast<real>(ph.eta2), mass = static_cast<real>(ph.mass);
   const real four_nu = static_cast<real>(ph.four_nu), dh = static_cast<real>(ph.delta_h_c0_2);
   const real diffusivity = static_cast<real>(ph.diffusivity);
+  // Conventional scheme: the summation density at the next positions (pass_context.hpp).
+  constexpr bool kPredict = Scheme::summation_density;
+  const DensityPrediction next = ctx.next_density;
+  const float* ddx = next.dx;
+  const float* ddy = next.dy;
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -51,6 +57,8 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       // Buffers do not shift; a particle that enters the fluid at the end of this step is
       // then checked (check_state) with a defined zero, not a stale value of its index.
       if constexpr (Scheme::shifting) s.sx[i] = s.sy[i] = 0.0f;
+      // No prediction for buffers: one that becomes fluid gets its own sum (NaN says so).
+      if constexpr (kPredict) next.sum[i] = std::numeric_limits<float>::quiet_NaN();
       continue;
     }
     const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i], rhoi_d = rho[i], ci_d = c[i];
@@ -58,8 +66,10 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
     const real inv_rhoi = real(1) / rhoi;
     real ax = 0, ay = 0, drho = 0, gx = 0, gy = 0;  // flow
     real cdiff = 0, cdil = 0, cgx = 0, cgy = 0;     // species
+    real wsum = 0;                                  // density at the next positions
+    const real ddxi = kPredict ? ddx[i] : real(0), ddyi = kPredict ? ddy[i] : real(0);
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-#pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy)
+#pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy, wsum)
     for (std::uint32_t k = kb; k < ke; ++k) {
       const std::uint32_t j = nb[k];
       const real dx = static_cast<real>(xi - x[j]), dy = static_cast<real>(yi - y[j]);
@@ -93,6 +103,10 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
         gx += volj * gwx;
         gy += volj * gwy;
       }
+      if constexpr (kPredict) {
+        const real nx = dx + (ddxi - ddx[j]), ny = dy + (ddyi - ddy[j]);
+        wsum += kernel.value<real>(std::sqrt(nx * nx + ny * ny));
+      }
       const real c_ji = static_cast<real>(c[j] - ci_d);
       if constexpr (Diffuse)
         cdiff += species_diffusion_pair(diffusivity, voli, volj, lap_weight, -c_ji, dmask[j]);
@@ -109,6 +123,7 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       s.ay[i] = ay;
     }
     if constexpr (Scheme::continuity) s.drho[i] = drho;
+    if constexpr (kPredict) next.sum[i] = wsum;
     double dci = double(cdiff) + ci_d * double(cdil);
     if constexpr (Scheme::shifting) {
       double sxi, syi;

@@ -11,19 +11,31 @@
 namespace adrsph {
 
 struct PhysicsConstants {
-  double mass = 0.0;           // m = rho0 dx^2
-  double eta2 = 0.0;           // (0.1 h)^2, eqs. (7), (12)
-  double four_nu = 0.0;        // 2 (nu_i + nu_j) with uniform nu
-  double delta_h_c0_2 = 0.0;   // 2 delta h c0, eq. (8)
-  double diffusivity = 0.0;    // D
+  double mass = 0.0;          // m = rho0 dx^2
+  double eta2 = 0.0;          // (0.1 h)^2, eqs. (7), (12)
+  double four_nu = 0.0;       // 2 (nu_i + nu_j) with uniform nu
+  double delta_h_c0_2 = 0.0;  // 2 delta h c0, eq. (8)
+  double diffusivity = 0.0;   // D
   TaitEos eos;
-  ShiftingVelocity shifting;   // set per step (depends on dt)
+  ShiftingVelocity shifting;  // set per step (depends on dt)
+};
+
+// Conventional scheme: the force pass also sums the kernel at the positions the integrator
+// will give the particles next, x_next = x + d with d the displacement of the coming stage
+// (0 for walls), so that the next evaluation needs no summation-density pass of its own
+// (density_passes.hpp). The pair separation is r_ij + d_i - d_j, in single precision like
+// the rest of the pair arithmetic (its rounding, ~1e-7 of r, is that of the pass itself).
+struct DensityPrediction {
+  float* sum = nullptr;       // out: sum_j W(x_next_i - x_next_j) per fluid i; NaN for the others
+  const float* dx = nullptr;  // d per particle
+  const float* dy = nullptr;
 };
 
 struct PassContext {
   const QuinticKernel& kernel;
   const NeighbourList& neighbours;
   const PhysicsConstants& phys;
+  DensityPrediction next_density = {};
 };
 
 }  // namespace adrsph
