@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string_view>
+#include <thread>
 
 #include "adrsph/case.hpp"
 #include "adrsph/io/checkpoint_h5.hpp"
@@ -228,6 +231,23 @@ int run(const RunOptions& o) {
   std::signal(SIGTERM, run_on_stop_signal);
   const auto t0 = std::chrono::steady_clock::now();
   const double load_start = load_average();
+  // Every neighbour pass ends at a barrier, and OpenMP threads spin there before they sleep:
+  // on a machine whose cores are busy, a thread that shares one waits a scheduler slice at
+  // each barrier. Measured next to one busy process on 2 cores (coarse reactor, 300 steps):
+  // 1 thread 0.82 s, 2 threads 28 s, 2 threads with OMP_WAIT_POLICY=passive 0.93 s. On an
+  // idle machine passive waiting costs up to a third at coarse resolution, so it is the
+  // user's call (README.md, "Running a case"). The policy is read when the OpenMP runtime
+  // starts, before this code: say so instead of running slowly.
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  const char* policy = std::getenv("OMP_WAIT_POLICY");
+  const bool passive = policy && std::string_view(policy) == "passive";
+  if (!o.quiet && threads > 1 && !passive && cores > 0 && load_start + threads > cores + 0.5)
+    std::fprintf(stderr,
+                 "adrsph run: warning: %d threads on %d cores with a load average of %.1f: "
+                 "threads that share a core wait for each other at every pass (up to 30x "
+                 "slower); set OMP_WAIT_POLICY=passive or use --threads %d\n",
+                 threads, cores, load_start,
+                 std::max(1, cores - static_cast<int>(load_start + 0.5)));
   RunResult r;
   try {
     r = run_simulation(c, observer, setup.resume ? &setup.base.state : nullptr);
