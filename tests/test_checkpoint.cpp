@@ -141,6 +141,25 @@ TEST(Checkpoint, PeriodicCheckpointsChangeNothing) {
   omp_set_num_threads(threads);
 }
 
+// Watching a run does not change it: probe checks every 0.002 s or every 0.05 s (and with
+// them the steady test's samples) leave the same trajectory and the same list rebuilds.
+TEST(Checkpoint, ProbeChecksChangeNothing) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  for (const Flow flow : {Flow::wcsph, Flow::prescribed}) {
+    Case often = short_run(Scheme::modern, flow), rarely = often;
+    rarely.time.check_interval = 0.05;
+    Recorder a(0, 0, CheckpointRequest::none), b(0, 0, CheckpointRequest::none);
+    const RunResult ra = run_simulation(often, a);
+    const RunResult rb = run_simulation(rarely, b);
+    ASSERT_EQ(ra.status, "ok") << ra.message;
+    ASSERT_EQ(rb.status, "ok") << rb.message;
+    EXPECT_EQ(ra.list_rebuilds, rb.list_rebuilds);
+    expect_same(a.last, b.last);
+  }
+  omp_set_num_threads(threads);
+}
+
 TEST(Checkpoint, UnreadableFileNamesIt) {
   test::TempDir dir;
   test::write_file(dir / "bad.h5", "not hdf5");

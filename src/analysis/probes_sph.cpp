@@ -12,8 +12,8 @@ constexpr auto kWall = static_cast<std::uint8_t>(Kind::wall);
 double ProbeSampler::concentration_at(double x, double y) const {
   const int cx = grid.cell_x(x), cy = grid.cell_y(y);
   double num = 0.0, den = 0.0;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
+  for (int dy = -rings; dy <= rings; ++dy) {
+    for (int dx = -rings; dx <= rings; ++dx) {
       const int r = grid.rank(cx + dx, cy + dy);
       if (r < 0) continue;
       for (std::uint32_t j = grid.cell_start(r); j < grid.cell_start(r + 1); ++j) {

@@ -14,8 +14,12 @@ namespace adrsph {
 
 struct ProbeSampler {
   const ParticleStore& particles;
-  const CellGrid& grid;  // sorted for `particles` (particles may have moved < skin/2 since)
+  const CellGrid& grid;  // the grid of the last sort (particles may have moved since)
   const QuinticKernel& kernel;
+  // Rings of cells searched around a probe: enough for a particle that has moved since the
+  // sort to be found (SphSolver::sampler()). Sampling never re-sorts: watching a run does not
+  // change it.
+  int rings = 1;
 
   double concentration_at(double x, double y) const;
   double section_average(double x, double half_width, int n_points) const;

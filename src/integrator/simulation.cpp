@@ -85,12 +85,10 @@ std::vector<double> warm_start(const Case& c, RunObserver& observer, RunResult& 
       throw RunInterrupted("interrupted during the warm start (no checkpoint yet)");
     if (solver.time() >= next_check) {
       next_check += c.time.check_interval;
-      solver.sync_for_probes();
       steady.update(solver.time(), solver.sampler().probe_lines(c.geometry.length,
                                                                 c.geometry.half_width, n_section));
     }
   }
-  solver.sync_for_probes();
   const ProbeSampler from = solver.sampler();
   std::vector<double> x, y, field;
   std::vector<Kind> kind;
@@ -198,7 +196,6 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
   };
   auto sample = [&] {
     ScopedPhase timer(solver.timers(), Phase::probes);
-    solver.sync_for_probes();
     last_probes = solver.sampler().probe_lines(length, half_width, n_section);
     if (c.time.average_window > 0) {
       window.emplace_back(solver.time(), last_probes);

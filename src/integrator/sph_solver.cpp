@@ -120,10 +120,6 @@ bool SphSolver::needs_rebuild() {
          skin_;
 }
 
-void SphSolver::sync_for_probes() {
-  if (2.0 * moved_abs_ > skin_) rebuild();
-}
-
 void SphSolver::evaluate() {
   density_predicted_ = false;
   (this->*eval_fn_)();
@@ -262,7 +258,7 @@ bool SphSolver::step_impl(double dt) {
   ++steps_;
   particle_steps_ += static_cast<double>(store_.size());
   if (needs_rebuild()) rebuild();
-  // Any rebuild (here or before probe sampling) may have found particles that left.
+  // A rebuild may have found particles that left.
   if (lost_ > lost_reported_) {
     std::ostringstream m;
     m << (lost_ - lost_reported_) << " fluid particle(s) left the channel through a wall or "

@@ -2,6 +2,8 @@
 // the state by explicit midpoint steps (two evaluations per step).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -58,7 +60,14 @@ class SphSolver {
   double mean_neighbours() const { return list_.mean_neighbours(); }
   long list_rebuilds() const { return rebuilds_; }
   double particle_steps() const { return particle_steps_; }
-  ProbeSampler sampler() const { return ProbeSampler{store_, grid_, kernel_}; }
+  // Probe sampling on the grid of the last sort, read-only: a particle within the support of
+  // a probe now was within support + moved_abs_ at the sort, so the search covers that many
+  // cells of size cutoff_ around it.
+  ProbeSampler sampler() const {
+    const int rings = std::max(
+        1, static_cast<int>(std::ceil((kernel_.support + moved_abs_) / cutoff_ * (1.0 + 1e-12))));
+    return ProbeSampler{store_, grid_, kernel_, rings};
+  }
   FieldFrame frame(std::vector<double>& pressure_pa) const;
   // Recompute the derived fields (density, pressure, volumes) and rates of the current state
   // without advancing: used by tests and benchmarks.
@@ -68,8 +77,6 @@ class SphSolver {
   void predict_density(bool on) { predict_density_ = on; }
   // Re-sort, feed/drain the buffers and rebuild the neighbour lists.
   void rebuild();
-  // Make the cell grid current for probe sampling (re-sort if particles moved > skin/2).
-  void sync_for_probes();
 
   // Checkpoint/restart (adrsph/checkpoint.hpp). A snapshot is exact only when taken right
   // after a rebuild (just_rebuilt()): restore() rebuilds the lists from the positions.
@@ -121,8 +128,8 @@ class SphSolver {
   void (SphSolver::*eval_fn_)() = nullptr;
   // Re-sort / list rebuild criterion. moved_abs_ bounds how far any particle moved since the
   // last build (the inflow buffer must be re-fed before its upstream gap reaches the fluid's
-  // support; the probe search needs < skin/2). Once 2 moved_abs_ > skin, the monitor bounds
-  // the relative displacement of possible pairs (displacement_monitor.hpp).
+  // support; the probe search widens with it, sampler()). Once 2 moved_abs_ > skin, the monitor
+  // bounds the relative displacement of possible pairs (displacement_monitor.hpp).
   bool needs_rebuild();
   DisplacementMonitor monitor_;
   long rebuilds_ = 0;
