@@ -166,6 +166,49 @@ TEST(Robustness, StepAboveStableLimitIsCaught) {
   EXPECT_TRUE(obs.all_finite) << "the last good state must be written, not the blown-up one";
 }
 
+// A step that trips a guard is undone: the particles, their kinds, the inflow rows (seen
+// through the next steps), the ledger, the crossings and the time are as before it.
+TEST(Robustness, FailedStepLeavesEverythingAsItWas) {
+  Case c = testing::short_channel(Scheme::modern, Flow::prescribed, 10.0);
+  c.species.D = 1000.0;
+  c.species.c_init = 0.0;  // a front at the inlet: explicit diffusion far too long blows up
+  c.time.species_subcycling = false;
+  SphSolver solver(c), twin(c);
+  solver.track_species_balance(true);
+  twin.track_species_balance(true);
+  const double dt = solver.dt_limits().chosen;
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_TRUE(solver.step(dt)) << solver.failure();
+    ASSERT_TRUE(twin.step(dt)) << twin.failure();
+  }
+  const double huge = 200.0 * dt;  // moves the inlet rows into the fluid, C far off its band
+  ASSERT_FALSE(solver.step(huge));
+  EXPECT_NE(solver.failure().find("concentration"), std::string::npos) << solver.failure();
+  EXPECT_EQ(solver.time(), twin.time());
+  EXPECT_EQ(solver.steps(), twin.steps());
+  const auto& l = solver.species_ledger();
+  const auto& m = twin.species_ledger();
+  EXPECT_EQ(l.inflow, m.inflow);
+  EXPECT_EQ(l.outflow, m.outflow);
+  EXPECT_EQ(l.buffer_exchange, m.buffer_exchange);
+  EXPECT_EQ(l.reaction, m.reaction);
+  EXPECT_EQ(solver.boundary_crossings().entered, twin.boundary_crossings().entered);
+  EXPECT_EQ(solver.boundary_crossings().left, twin.boundary_crossings().left);
+  // The state, and everything that follows from it: the next steps match the twin's.
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_TRUE(solver.step(dt)) << solver.failure();
+    ASSERT_TRUE(twin.step(dt)) << twin.failure();
+  }
+  const auto& a = solver.particles();
+  const auto& b = twin.particles();
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    differ += a.x[i] != b.x[i] || a.y[i] != b.y[i] || a.c[i] != b.c[i] || a.kind[i] != b.kind[i];
+  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(solver.boundary_crossings().entered, twin.boundary_crossings().entered);
+}
+
 TEST(Robustness, JitteredLatticeStaysStableWithShifting) {
   Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
   SphSolver solver(c);

@@ -210,66 +210,79 @@ bool SphSolver::step_impl(double dt) {
     phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
     phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
   }
-  // Stage 1 predicts the density at x + dt/2 u (x0 = x then), stage 2 at x0 + dt u*.
+  // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x0 = x then),
+  // stage 2 at x0 + dt u*.
   evaluate_impl<S, Ale, Split>(0.5 * dt, false);
   density_predicted_ = S::summation_density && predict_density_;
   advance<S, true>(0.5 * dt);
   evaluate_impl<S, Ale, Split>(dt, true);
   density_predicted_ = S::summation_density && predict_density_;
+  double exchange = 0.0;         // with the buffers, for the ledger once the step is kept
   if (!Split && track_balance_)  // (sub-cycled diffusion accounts for its own exchange)
-    ledger_.buffer_exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
+    exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
   advance<S, false>(dt);
-  if constexpr (Split) {
-    ScopedPhase timer(timers_, Phase::species);
-    // Stages from this step's size (a final short step needs fewer).
-    const auto plan = DiffusionSubcycler::plan(dt / limits_.diffusion);
-    ledger_.buffer_exchange +=
-        subcycler_.advance(store_, {kernel_, list_, phys_}, dt, plan, track_balance_);
-  }
-  {
-    ScopedPhase timer(timers_, Phase::integration);
-    // First-order reaction, exact over the step: it commutes with the linear transport
-    // operators because k is uniform (docs/benchmark.md, section 6).
-    const double decay = species_decay(case_.species.k, dt);
-    const std::size_t n = store_.size();
-    const double mass = phys_.mass;
-    double consumed = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : consumed)
-    for (std::size_t i = 0; i < n; ++i) {
-      if (store_.kind[i] != kFluid) continue;
-      consumed += mass / store_.rho[i] * store_.c[i] * (1.0 - decay);
-      store_.c[i] *= decay;
-    }
-    ledger_.reaction += consumed;
-  }
-  {
-    ScopedPhase timer(timers_, Phase::boundaries);
-    scene_.advance_inflow(dt);
-    const auto crossed = scene_.update_kinds(store_);
-    crossings_.entered += crossed.entered;
-    crossings_.left += crossed.left;
-    crossings_.species_in += crossed.species_in;
-    crossings_.species_out += crossed.species_out;
-    ledger_.inflow += crossed.species_in;
-    ledger_.outflow += crossed.species_out;
-  }
+  if constexpr (Split) exchange += diffuse_species(dt);
+  // Guards before anything outside the particle state changes: a failed step restores the
+  // start state and leaves kinds, inflow rows, ledger and time as they were.
   if (!check_state(dt)) return false;
+  ledger_.buffer_exchange += exchange;
+  react(dt);
+  update_buffers(dt);
   t_ += dt;
   ++steps_;
   particle_steps_ += static_cast<double>(store_.size());
   if (needs_rebuild()) rebuild();
-  // A rebuild may have found particles that left.
-  if (lost_ > lost_reported_) {
-    std::ostringstream m;
-    m << (lost_ - lost_reported_) << " fluid particle(s) left the channel through a wall or "
-      << "the inlet by t = " << t_ << " s (step " << steps_ << "). The flow near the "
-      << "boundaries is under-resolved or the step too large: lower time.cfl (now "
-      << case_.time.cfl << ") or keep particles.wall_layers >= 3.";
-    lost_reported_ = lost_;
-    failure_ = m.str();
-    return false;
+  return report_lost();
+}
+
+double SphSolver::diffuse_species(double dt) {
+  ScopedPhase timer(timers_, Phase::species);
+  // Stages from this step's size (a final short step needs fewer).
+  const auto plan = DiffusionSubcycler::plan(dt / limits_.diffusion);
+  return subcycler_.advance(store_, {kernel_, list_, phys_}, dt, plan, track_balance_);
+}
+
+void SphSolver::react(double dt) {
+  ScopedPhase timer(timers_, Phase::integration);
+  // First-order reaction, exact over the step: it commutes with the linear transport
+  // operators because k is uniform (docs/benchmark.md, section 6).
+  const double decay = species_decay(case_.species.k, dt);
+  const std::size_t n = store_.size();
+  const double mass = phys_.mass;
+  double consumed = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : consumed)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (store_.kind[i] != kFluid) continue;
+    consumed += mass / store_.rho[i] * store_.c[i] * (1.0 - decay);
+    store_.c[i] *= decay;
   }
-  return true;
+  ledger_.reaction += consumed;
+}
+
+void SphSolver::update_buffers(double dt) {
+  ScopedPhase timer(timers_, Phase::boundaries);
+  scene_.advance_inflow(dt);
+  const auto crossed = scene_.update_kinds(store_);
+  crossings_.entered += crossed.entered;
+  crossings_.left += crossed.left;
+  crossings_.species_in += crossed.species_in;
+  crossings_.species_out += crossed.species_out;
+  ledger_.inflow += crossed.species_in;
+  ledger_.outflow += crossed.species_out;
+}
+
+// Particles a re-sort found outside the channel. The step that moved them is kept (they are
+// removed already): the failure says so and stops the run there.
+bool SphSolver::report_lost() {
+  if (lost_ <= lost_reported_) return true;
+  std::ostringstream m;
+  m << (lost_ - lost_reported_) << " fluid particle(s) left the channel through a wall or "
+    << "the inlet by t = " << t_ << " s (step " << steps_ << "). The flow near the "
+    << "boundaries is under-resolved or the step too large: lower time.cfl (now " << case_.time.cfl
+    << ") or keep particles.wall_layers >= 3.";
+  lost_reported_ = lost_;
+  failure_ = m.str();
+  return false;
 }
 
 bool SphSolver::check_state(double dt) {

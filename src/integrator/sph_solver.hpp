@@ -37,8 +37,11 @@ class SphSolver {
   // in ChannelScene::for_each_initial() order (time.warm_start).
   SphSolver(const Case& c, std::span<const double> initial_c);
 
-  // One explicit midpoint step of size dt. Returns false (and restores the state at the start
-  // of the step) when a guard trips; failure() then says why and what to change.
+  // One explicit midpoint step of size dt. Returns false when a guard trips; failure() then
+  // says why and what to change. A guard on the state (non-finite values, speed, density, C
+  // band) undoes the step: particles, kinds, inflow rows, ledger and time are as before it.
+  // Particles found outside the channel at the re-sort after a step are removed with it: that
+  // step is kept, and the run is meant to stop there.
   bool step(double dt);
 
   double time() const { return t_; }
@@ -107,6 +110,11 @@ class SphSolver {
   template <class S, bool Save>
   void advance(double a);
   bool check_state(double dt);
+  // The phases of a step after the transport (step_impl reads as this list).
+  double diffuse_species(double dt);  // sub-cycled diffusion; returns the buffer exchange
+  void react(double dt);
+  void update_buffers(double dt);  // inflow rows, kinds, crossings
+  bool report_lost();
   // The conventional scheme's summation density at the positions of the next evaluation,
   // taken by the force pass (pass_context.hpp). Valid until the particles are re-sorted or a
   // step is undone.
