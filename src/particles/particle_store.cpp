@@ -1,6 +1,7 @@
 #include "particles/particle_store.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace adrsph {
 
@@ -12,38 +13,31 @@ void permute_array(std::vector<T>& a, std::span<const std::uint32_t> order, std:
   for (std::size_t i = 0; i < order.size(); ++i) tmp[i] = a[order[i]];
   a.swap(tmp);
 }
-
-template <class... Arrays>
-void resize_all(std::size_t n, Arrays&... arrays) {
-  (arrays.resize(n), ...);
-}
-
-template <class... Arrays>
-void reserve_all(std::size_t n, Arrays&... arrays) {
-  (arrays.reserve(n), ...);
-}
-
-template <class... Arrays>
-std::size_t bytes_of(const Arrays&... arrays) {
-  return ((arrays.capacity() * sizeof(typename Arrays::value_type)) + ...);
-}
 }  // namespace
 
 void ParticleStore::reserve(std::size_t n) {
-  reserve_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, diffusion_mask, fluid_side, ax, ay, drho,
-              dc, sx, sy, x0, y0, vx0, vy0, rho0, c0, scratch_, scratch_f_, scratch_k_);
+  for_each_field(*this, [n](auto& a, Role) { a.reserve(n + 1); });
+  scratch_.reserve(n + 1);
+  scratch_f_.reserve(n + 1);
+  scratch_k_.reserve(n + 1);
 }
 
 std::size_t ParticleStore::bytes() const {
-  return bytes_of(x, y, vx, vy, rho, c, kind, p, vol, diffusion_mask, fluid_side, ax, ay, drho, dc,
-                  sx, sy, x0, y0, vx0, vy0, rho0, c0, scratch_, scratch_f_, scratch_k_);
+  std::size_t total = 0;
+  auto add = [&total](const auto& a, Role) {
+    total += a.capacity() * sizeof(typename std::decay_t<decltype(a)>::value_type);
+  };
+  for_each_field(*this, add);
+  add(scratch_, Role::per_step);
+  add(scratch_f_, Role::per_step);
+  add(scratch_k_, Role::per_step);
+  return total;
 }
 
 void ParticleStore::resize(std::size_t n) {
   if (n + 1 > x.capacity()) reserve(n + n / 32 + 64);
   n_ = n;
-  resize_all(n + 1, x, y, vx, vy, rho, c, kind, p, vol, diffusion_mask, fluid_side, ax, ay, drho,
-             dc, sx, sy, x0, y0, vx0, vy0, rho0, c0);
+  for_each_field(*this, [n](auto& a, Role) { a.resize(n + 1); });
   reset_padding();
 }
 
@@ -80,12 +74,20 @@ void ParticleStore::permute(std::span<const std::uint32_t> order) {
   scratch_.reserve(cap);
   scratch_f_.reserve(cap);
   scratch_k_.reserve(cap);
-  for (auto* a : {&x, &y, &vx, &vy, &rho, &c}) permute_array(*a, order, scratch_);
-  for (auto* a : {&p, &vol, &diffusion_mask, &fluid_side}) permute_array(*a, order, scratch_f_);
-  permute_array(kind, order, scratch_k_);
   n_ = order.size();
-  // Rates and saved state are recomputed every step: only their size must follow.
-  resize_all(n_ + 1, ax, ay, drho, dc, sx, sy, x0, y0, vx0, vy0, rho0, c0);
+  for_each_field(*this, [&](auto& a, Role role) {
+    if (role == Role::per_step) {
+      a.resize(n_ + 1);
+      return;
+    }
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if constexpr (std::is_same_v<T, double>)
+      permute_array(a, order, scratch_);
+    else if constexpr (std::is_same_v<T, float>)
+      permute_array(a, order, scratch_f_);
+    else
+      permute_array(a, order, scratch_k_);
+  });
   reset_padding();
 }
 

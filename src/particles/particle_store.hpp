@@ -57,20 +57,33 @@ struct ParticleStore {
   void reset_padding();
   // Explicit midpoint: keep particle i's start-of-step state, or go back to it.
   void save_start(std::size_t i) {
-    x0[i] = x[i];
-    y0[i] = y[i];
-    vx0[i] = vx[i];
-    vy0[i] = vy[i];
-    rho0[i] = rho[i];
-    c0[i] = c[i];
+    for_each_start_pair(*this, [i](auto& now, auto& start) { start[i] = now[i]; });
   }
   void restore_start(std::size_t i) {
-    x[i] = x0[i];
-    y[i] = y0[i];
-    vx[i] = vx0[i];
-    vy[i] = vy0[i];
-    rho[i] = rho0[i];
-    c[i] = c0[i];
+    for_each_start_pair(*this, [i](auto& now, auto& start) { now[i] = start[i]; });
+  }
+
+  // The field list: every array of the store, once. reserve, resize, bytes and permute are
+  // derived from it, so a new field is one line here. `carried` arrays follow their particle
+  // through a re-sort; the others are rewritten every evaluation or step before they are read,
+  // so a re-sort only sizes them.
+  enum class Role { carried, per_step };
+  template <class Store, class Visit>
+  static void for_each_field(Store& s, Visit&& visit) {
+    constexpr Role carried = Role::carried, per_step = Role::per_step;
+    visit(s.x, carried), visit(s.y, carried), visit(s.vx, carried), visit(s.vy, carried);
+    visit(s.rho, carried), visit(s.c, carried), visit(s.kind, carried);
+    visit(s.p, carried), visit(s.vol, carried);
+    visit(s.diffusion_mask, carried), visit(s.fluid_side, carried);
+    visit(s.ax, per_step), visit(s.ay, per_step), visit(s.drho, per_step), visit(s.dc, per_step);
+    visit(s.sx, per_step), visit(s.sy, per_step);
+    for_each_start_pair(s, [&](auto&, auto& start) { visit(start, per_step); });
+  }
+  // The state the explicit midpoint saves at the start of a step, with its copy.
+  template <class Store, class Visit>
+  static void for_each_start_pair(Store& s, Visit&& visit) {
+    visit(s.x, s.x0), visit(s.y, s.y0), visit(s.vx, s.vx0), visit(s.vy, s.vy0);
+    visit(s.rho, s.rho0), visit(s.c, s.c0);
   }
   // Keep the masks in step with kind[i] after a kind change.
   void set_kind(std::size_t i, Kind k) {

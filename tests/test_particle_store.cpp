@@ -1,0 +1,81 @@
+// The particle store's field list (particle_store.hpp): every array it lists is sized with the
+// store, and every carried array follows its particle through a re-sort.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <set>
+#include <type_traits>
+#include <vector>
+
+#include "particles/particle_store.hpp"
+
+namespace adrsph {
+namespace {
+
+TEST(ParticleStore, PermuteCarriesEveryListedField) {
+  ParticleStore s;
+  s.mass = 1.0;
+  const std::size_t n = 50;
+  for (std::size_t i = 0; i < n; ++i) s.push_back(0.0, 0.0, 0.0, 0.0, 1.0, 0.0, Kind::fluid);
+  // A value that names the particle (its index) in every carried array.
+  std::size_t fields = 0;
+  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role) {
+    EXPECT_EQ(a.size(), n + 1);  // the padding particle too
+    if (role != ParticleStore::Role::carried) return;
+    ++fields;
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    for (std::size_t i = 0; i < n; ++i) a[i] = static_cast<T>(i);
+  });
+  // What a particle carries between steps: its state, its kind, and what derives from the kind
+  // or is read before it is recomputed (p, V at the first evaluation after a re-sort).
+  std::set<const void*> carried;
+  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role) {
+    if (role == ParticleStore::Role::carried) carried.insert(&a);
+  });
+  for (const void* a :
+       {static_cast<const void*>(&s.x), static_cast<const void*>(&s.y),
+        static_cast<const void*>(&s.vx), static_cast<const void*>(&s.vy),
+        static_cast<const void*>(&s.rho), static_cast<const void*>(&s.c),
+        static_cast<const void*>(&s.kind), static_cast<const void*>(&s.p),
+        static_cast<const void*>(&s.vol), static_cast<const void*>(&s.diffusion_mask),
+        static_cast<const void*>(&s.fluid_side)})
+    EXPECT_EQ(carried.count(a), 1u);
+  EXPECT_EQ(fields, carried.size());
+  // Keep every other particle, in reverse order.
+  std::vector<std::uint32_t> order;
+  for (std::size_t i = n; i-- > 0;)
+    if (i % 2 == 0) order.push_back(static_cast<std::uint32_t>(i));
+  s.permute(order);
+  ASSERT_EQ(s.size(), order.size());
+  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role) {
+    EXPECT_EQ(a.size(), order.size() + 1);
+    if (role != ParticleStore::Role::carried) return;
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::size_t i = order[k];
+      EXPECT_EQ(a[k], static_cast<T>(i)) << "field of value size " << sizeof(T);
+    }
+  });
+  // The padding particle is reset after the permutation: far away, no volume, no species.
+  EXPECT_GT(s.x[s.size()], 1e11);
+  EXPECT_EQ(s.vol[s.size()], 0.0f);
+  EXPECT_EQ(s.diffusion_mask[s.size()], 0.0f);
+}
+
+TEST(ParticleStore, SaveAndRestoreCoverTheStartState) {
+  ParticleStore s;
+  s.mass = 1.0;
+  s.push_back(1.0, 2.0, 3.0, 4.0, 5.0, 6.0, Kind::fluid);
+  s.save_start(0);
+  s.x[0] = s.y[0] = s.vx[0] = s.vy[0] = s.rho[0] = s.c[0] = -1.0;
+  s.restore_start(0);
+  EXPECT_EQ(s.x[0], 1.0);
+  EXPECT_EQ(s.y[0], 2.0);
+  EXPECT_EQ(s.vx[0], 3.0);
+  EXPECT_EQ(s.vy[0], 4.0);
+  EXPECT_EQ(s.rho[0], 5.0);
+  EXPECT_EQ(s.c[0], 6.0);
+}
+
+}  // namespace
+}  // namespace adrsph
