@@ -10,23 +10,16 @@ constexpr auto kWall = static_cast<std::uint8_t>(Kind::wall);
 }  // namespace
 
 double ProbeSampler::concentration_at(double x, double y) const {
-  const int cx = grid.cell_x(x), cy = grid.cell_y(y);
   double num = 0.0, den = 0.0;
-  for (int dy = -rings; dy <= rings; ++dy) {
-    for (int dx = -rings; dx <= rings; ++dx) {
-      const int r = grid.rank(cx + dx, cy + dy);
-      if (r < 0) continue;
-      for (std::uint32_t j = grid.cell_start(r); j < grid.cell_start(r + 1); ++j) {
-        const double rx = x - particles.x[j], ry = y - particles.y[j];
-        // Every particle that carries species: fluid and both buffers (the outflow buffer
-        // holds the C its particles carried through x = L, a zero-gradient continuation).
-        if (particles.kind[j] == kWall) continue;
-        const double w = particles.vol[j] * kernel.value(std::sqrt(rx * rx + ry * ry));
-        num += w * particles.c[j];
-        den += w;
-      }
-    }
-  }
+  grid.for_each_near(x, y, rings, [&](std::uint32_t j) {
+    // Every particle that carries species: fluid and both buffers (the outflow buffer
+    // holds the C its particles carried through x = L, a zero-gradient continuation).
+    if (particles.kind[j] == kWall) return;
+    const double rx = x - particles.x[j], ry = y - particles.y[j];
+    const double w = particles.vol[j] * kernel.value(std::sqrt(rx * rx + ry * ry));
+    num += w * particles.c[j];
+    den += w;
+  });
   return den > 0.0 ? num / den : std::nan("");
 }
 
@@ -54,13 +47,6 @@ ProbeTable ProbeSampler::probe_lines(double length, double half_width, int n_sec
     t.c_ym25[i] = concentration_at(x, -y_line);
     t.c_mean[i] = section_average(x, half_width, n_section);
   }
-  return t;
-}
-
-StationTable ProbeSampler::stations(double length, double half_width, int n_section) const {
-  StationTable t;
-  t.x_mm = station_x_positions(length);
-  for (double x : t.x_mm) t.c_mean.push_back(section_average(x, half_width, n_section));
   return t;
 }
 

@@ -24,7 +24,6 @@ struct ProbeSampler {
   double concentration_at(double x, double y) const;
   double section_average(double x, double half_width, int n_points) const;
   ProbeTable probe_lines(double length, double half_width, int n_section) const;
-  StationTable stations(double length, double half_width, int n_section) const;
 };
 
 std::string probe_interpolation_text(int n_section);

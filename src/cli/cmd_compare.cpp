@@ -17,7 +17,6 @@ namespace adrsph::cli {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr int kExitIoError = 1;  // as `run`: I/O or internal error
 
 struct CompareOptions {
   std::string run_dir, ref_dir, out;

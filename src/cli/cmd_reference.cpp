@@ -18,7 +18,6 @@ namespace adrsph::cli {
 namespace {
 
 namespace ref = adrsph::reference;
-constexpr int kExitIoError = 1;  // as `run`: I/O or internal error
 
 struct ReferenceOptions {
   std::string case_file;

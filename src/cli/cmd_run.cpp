@@ -31,7 +31,6 @@ namespace adrsph::cli {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr int kExitIoError = 1;  // could not write the outputs, or an internal error
 
 // Keys a continued run may change: when and how it ends and reports, never its physics.
 constexpr const char* kRestartKeys[] = {"time.t_end", "time.max_steps", "time.stop_when_steady",

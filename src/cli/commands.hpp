@@ -8,6 +8,7 @@ namespace adrsph::cli {
 
 // Exit codes shared by all subcommands.
 inline constexpr int kExitOk = 0;
+inline constexpr int kExitIoError = 1;      // could not read or write files, or an internal error
 inline constexpr int kExitBadInput = 2;     // bad case file, key, value, missing file
 inline constexpr int kExitRunFailed = 3;    // numerical failure (NaN, blow-up, lost particles)
 inline constexpr int kExitInterrupted = 4;  // SIGINT/SIGTERM: checkpoint written, continue later

@@ -22,7 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 constexpr auto kNoteEvery = std::chrono::seconds(60);
-constexpr int kExitIoError = 1;
 
 // One line of the study's own output, flushed: it is often redirected to a file.
 void say(const std::string& line) {

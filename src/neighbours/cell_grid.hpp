@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace adrsph {
@@ -31,6 +32,25 @@ class CellGrid {
   // of the particles that are inside the box; the ones outside are returned in `outside`.
   void sort(std::span<const double> x, std::span<const double> y, std::vector<std::uint32_t>& order,
             std::vector<std::uint32_t>& outside);
+
+  // After sort(): visit(j) for every particle j of the (2 rings + 1)^2 cells around the cell
+  // of (x, y): with rings = 1, every particle within one cell size of the point. `rings` is an
+  // int, or std::integral_constant<int, 1> in the list build (bounds known at compile time:
+  // a list build runs 4% fewer instructions than with a run-time 1, perf guard).
+  template <class Rings, class Visit>
+  void for_each_near(double x, double y, Rings rings, Visit&& visit) const {
+    const int cx = cell_x(x), cy = cell_y(y);
+    const int k = static_cast<int>(rings);
+    for (int dy = -k; dy <= k; ++dy) {
+      for (int dx = -k; dx <= k; ++dx) {
+        const int r = rank(cx + dx, cy + dy);
+        if (r < 0) continue;
+        // Bounds read once: visit() may store through pointers g++ cannot tell apart from them.
+        const std::uint32_t first = start_[r], last = start_[r + 1];
+        for (std::uint32_t j = first; j < last; ++j) visit(j);
+      }
+    }
+  }
 
   // After sort(): particles of cell rank r are [cell_start(r), cell_start(r + 1)) in sorted order.
   std::uint32_t cell_start(int r) const { return start_[r]; }

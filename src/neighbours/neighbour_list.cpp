@@ -1,20 +1,11 @@
 #include "neighbours/neighbour_list.hpp"
 
+#include <type_traits>
+
 namespace adrsph {
 
 namespace {
-// Visit the candidates j of particle i in the 3x3 block of cells around it.
-template <class Visit>
-void for_each_candidate(const CellGrid& grid, double xi, double yi, Visit&& visit) {
-  const int cx = grid.cell_x(xi), cy = grid.cell_y(yi);
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int r = grid.rank(cx + dx, cy + dy);
-      if (r < 0) continue;
-      for (std::uint32_t j = grid.cell_start(r); j < grid.cell_start(r + 1); ++j) visit(j);
-    }
-  }
-}
+constexpr std::integral_constant<int, 1> kOneRing{};  // the 3x3 cells around a particle
 }  // namespace
 
 void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
@@ -28,7 +19,7 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t cnt = 0;
     const double xi = x[i], yi = y[i];
-    for_each_candidate(grid, xi, yi, [&](std::uint32_t j) {
+    grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
       const double dx = xi - x[j], dy = yi - y[j];
       cnt += (j != i && dx * dx + dy * dy < rc2) ? 1u : 0u;
     });
@@ -42,7 +33,7 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t k = offset_[i];
     const double xi = x[i], yi = y[i];
-    for_each_candidate(grid, xi, yi, [&](std::uint32_t j) {
+    grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
       const double dx = xi - x[j], dy = yi - y[j];
       if (j != i && dx * dx + dy * dy < rc2) index_[k++] = j;
     });
