@@ -50,6 +50,15 @@ struct QuinticKernel {
   // (dW/dr) / r, so that grad_i W_ij = F(r_ij) * (r_i - r_j). Zero beyond the support and
   // finite at r = 0 (dW/dr vanishes there).
   double gradient_factor(double r) const { return derivative(r) / (r + 1e-30); }
+
+  // (r_ij . grad_i W_ij) / (r_ij^2 + eta^2) = (dW/dr) r / (r^2 + eta^2) at r^2 = r2: the
+  // Laplacian weight of the viscous term (eq. 7), the density diffusion (eq. 8) and the species
+  // diffusion (eq. 12). The fused force pass computes the same expression with one division
+  // shared with its other factors (interaction_pass.hpp); every other caller uses this.
+  double laplacian_weight(double r2, double eta2) const {
+    const double r = std::sqrt(r2);
+    return derivative(r) * r / (r2 + eta2);
+  }
 };
 
 }  // namespace adrsph

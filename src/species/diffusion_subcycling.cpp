@@ -32,8 +32,7 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
     for (std::uint32_t k = kb; k < ke; ++k) {
       const std::uint32_t j = nb[k];
       const double dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-      const double r = std::sqrt(r2) + 1e-30;
-      const double lap_weight = kernel.derivative(r) * r / (r2 + eta2);
+      const double lap_weight = kernel.laplacian_weight(r2, eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
       w[k] = static_cast<float>(
           species_diffusion_pair<double>(diffusivity, voli, vol[j], lap_weight, 1.0, dmask[j]));

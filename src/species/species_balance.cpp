@@ -19,7 +19,7 @@ double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& c
       const std::uint32_t j = nb[k];
       if (s.kind[j] != inlet && s.kind[j] != outlet) continue;
       const double dx = s.x[i] - s.x[j], dy = s.y[i] - s.y[j], r2 = dx * dx + dy * dy;
-      const double lap_weight = ctx.kernel.gradient_factor(std::sqrt(r2)) * r2 / (r2 + eta2);
+      const double lap_weight = ctx.kernel.laplacian_weight(r2, eta2);
       rate += species_diffusion_pair<double>(ctx.phys.diffusivity, s.vol[i], s.vol[j], lap_weight,
                                              s.c[i] - s.c[j], s.diffusion_mask[j]);
     }
