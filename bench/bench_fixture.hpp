@@ -63,6 +63,9 @@ struct Fixture {
     phys.eos.rho0 = c.fluid.rho0;
     phys.eos.c0 = c.c0();
     phys.eos.gamma = c.fluid.gamma;
+    phys.eos.p_background = c.scheme == Scheme::conventional
+                                ? c.fluid.background_pressure * c.fluid.rho0 * c.c0() * c.c0()
+                                : 0.0;
     phys.shifting.coefficient = c.modern.shift_eps * c.h() * c.h() / dt;
     phys.shifting.max_speed = c.modern.shift_max * dx / dt;
 
