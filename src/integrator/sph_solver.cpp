@@ -140,7 +140,7 @@ void SphSolver::next_displacement(double a, bool from_start) {
       continue;
     }
     // As advance() moves it (no shifting in this scheme): x_next = base + a u.
-    const double bx = from_start ? s.x0[i] : s.x[i], by = from_start ? s.y0[i] : s.y[i];
+    const double bx = from_start ? s.x_start[i] : s.x[i], by = from_start ? s.y_start[i] : s.y[i];
     next_dx_[i] = static_cast<float>(bx + a * s.vx[i] - s.x[i]);
     next_dy_[i] = static_cast<float>(by + a * s.vy[i] - s.y[i]);
   }
@@ -188,18 +188,18 @@ void SphSolver::advance(double a) {
         tx += s.sx[i];
         ty += s.sy[i];
       }
-      s.x[i] = s.x0[i] + a * tx;
-      s.y[i] = s.y0[i] + a * ty;
-      s.vx[i] = s.vx0[i] + a * s.ax[i];
-      s.vy[i] = s.vy0[i] + a * s.ay[i];
+      s.x[i] = s.x_start[i] + a * tx;
+      s.y[i] = s.y_start[i] + a * ty;
+      s.vx[i] = s.vx_start[i] + a * s.ax[i];
+      s.vy[i] = s.vy_start[i] + a * s.ay[i];
     } else {
       // Inlet (prescribed profile), outlet (frozen velocity), prescribed-flow fluid.
-      s.x[i] = s.x0[i] + a * s.vx[i];
-      s.y[i] = s.y0[i] + a * s.vy[i];
+      s.x[i] = s.x_start[i] + a * s.vx[i];
+      s.y[i] = s.y_start[i] + a * s.vy[i];
     }
     if (k == kFluid) {
-      if constexpr (S::continuity) s.rho[i] = s.rho0[i] + a * s.drho[i];
-      s.c[i] = s.c0[i] + a * s.dc[i];
+      if constexpr (S::continuity) s.rho[i] = s.rho_start[i] + a * s.drho[i];
+      s.c[i] = s.c_start[i] + a * s.dc[i];
     }
   }
 }
@@ -210,8 +210,8 @@ bool SphSolver::step_impl(double dt) {
     phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
     phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
   }
-  // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x0 = x then),
-  // stage 2 at x0 + dt u*.
+  // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x_start = x then),
+  // stage 2 at x_start + dt u*.
   evaluate_impl<S, Ale, Split>(0.5 * dt, false);
   density_predicted_ = S::summation_density && predict_density_;
   advance<S, true>(0.5 * dt);

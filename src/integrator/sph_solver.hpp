@@ -92,7 +92,7 @@ class SphSolver {
  private:
   template <class S, bool Ale, bool Split>
   bool step_impl(double dt);
-  // a_next: the coming stage's step (prediction at x0 + a_next u; before the first stage,
+  // a_next: the coming stage's step (prediction at x_start + a_next u; before the first stage,
   // from_start = false: at x + a_next u); a_next < 0: no prediction wanted.
   template <class S, bool Ale, bool Split>
   void evaluate_impl(double a_next, bool from_start);
@@ -100,7 +100,7 @@ class SphSolver {
   void evaluate_at_rest() {  // evaluate() (a prediction for the current positions, unused)
     evaluate_impl<S, Ale, Split>(-1.0, 0.0);
   }
-  // The displacement of the coming stage, next_dx_ = base + a u - x (base: x0, or x when
+  // The displacement of the coming stage, next_dx_ = base + a u - x (base: x_start, or x when
   // a_base < 0, before the first stage), as advance() will apply it.
   template <class S>
   void next_displacement(double a, bool from_start);

@@ -34,7 +34,7 @@ struct ParticleStore {
   std::vector<float> ax, ay, drho, dc;
   std::vector<float> sx, sy;  // shifting velocity du (modern scheme), eq. (10)
   // State at the start of the step (explicit midpoint needs it), double like the state.
-  std::vector<double> x0, y0, vx0, vy0, rho0, c0;
+  std::vector<double> x_start, y_start, vx_start, vy_start, rho_start, c_start;
 
   double mass = 0.0;  // every particle carries m = rho0 dx^2 (per unit depth)
 
@@ -82,8 +82,8 @@ struct ParticleStore {
   // The state the explicit midpoint saves at the start of a step, with its copy.
   template <class Store, class Visit>
   static void for_each_start_pair(Store& s, Visit&& visit) {
-    visit(s.x, s.x0), visit(s.y, s.y0), visit(s.vx, s.vx0), visit(s.vy, s.vy0);
-    visit(s.rho, s.rho0), visit(s.c, s.c0);
+    visit(s.x, s.x_start), visit(s.y, s.y_start), visit(s.vx, s.vx_start);
+    visit(s.vy, s.vy_start), visit(s.rho, s.rho_start), visit(s.c, s.c_start);
   }
   // Keep the masks in step with kind[i] after a kind change.
   void set_kind(std::size_t i, Kind k) {
