@@ -13,6 +13,7 @@
 #include "adrsph/simulation.hpp"
 #include "analysis/steady_state.hpp"
 #include "boundaries/channel_scene.hpp"
+#include "case/failure_advice.hpp"
 #include "integrator/sph_solver.hpp"
 
 namespace adrsph {
@@ -287,7 +288,8 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
   }
   if (!ok) {
     result.status = "failed";
-    result.message = solver.failure();
+    result.message = solver.failure() + " " +
+                     failure_advice(solver.failure_kind(), c, solver.dt_limits().acoustic);
   }
   // Final probes: instantaneous, or the mean over the final window.
   if (c.time.average_window > 0 && !window.empty() && ok) {

@@ -277,11 +277,10 @@ bool SphSolver::report_lost() {
   if (lost_ <= lost_reported_) return true;
   std::ostringstream m;
   m << (lost_ - lost_reported_) << " fluid particle(s) left the channel through a wall or "
-    << "the inlet by t = " << t_ << " s (step " << steps_ << "). The flow near the "
-    << "boundaries is under-resolved or the step too large: lower time.cfl (now " << case_.time.cfl
-    << ") or keep particles.wall_layers >= 3.";
+    << "the inlet by t = " << t_ << " s (step " << steps_ << ").";
   lost_reported_ = lost_;
   failure_ = m.str();
+  failure_kind_ = FailureKind::lost_particles;
   return false;
 }
 
@@ -314,26 +313,22 @@ bool SphSolver::check_state(double dt) {
   std::ostringstream m;
   if (bad > 0) {
     m << bad << " particle(s) with non-finite state (NaN or inf) at t = " << t_ + dt << " s, step "
-      << steps_ + 1 << ", dt = " << dt << " s. ";
+      << steps_ + 1 << ", dt = " << dt << " s.";
   } else if (case_.flow == Flow::wcsph && vmax > 0.5 * case_.c0()) {
     m << "particle speed " << vmax << " mm/s exceeds 0.5 c0 = " << 0.5 * case_.c0()
       << " mm/s at t = " << t_ + dt << " s, step " << steps_ + 1
-      << ": the flow blew up, weak compressibility no longer holds. ";
+      << ": the flow blew up, weak compressibility no longer holds.";
   } else if (case_.flow == Flow::wcsph && drho_max > 0.2) {
     m << "density deviates by " << 100 * drho_max << "% from rho0 at t = " << t_ + dt << " s, step "
-      << steps_ + 1 << ": the flow blew up. ";
+      << steps_ + 1 << ": the flow blew up.";
   } else if (c_dev > 0.5 * c_max) {
     m << "concentration left the physical band [0, " << c_max << "] by " << c_dev
       << " mol/m^3 at t = " << t_ + dt << " s, step " << steps_ + 1
-      << ": the species step is unstable. ";
+      << ": the species step is unstable.";
   }
   if (!m.str().empty()) {
-    m << "The time step is above the stable limit for this case: lower time.cfl (now "
-      << case_.time.cfl << ")";
-    if (case_.time.dt > 0)
-      m << " or time.dt (now " << case_.time.dt << " s, limit " << limits_.acoustic << " s)";
-    m << ", or time.diffusion_number (now " << case_.time.diffusion_number << ").";
     failure_ = m.str();
+    failure_kind_ = FailureKind::unstable_step;
     // Restore the last good state (start of this step; walls were not advanced).
     for (std::size_t i = 0; i < n; ++i)
       if (s.kind[i] != kWall) s.restore_start(i);

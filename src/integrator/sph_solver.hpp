@@ -12,6 +12,7 @@
 #include "adrsph/simulation.hpp"
 #include "analysis/probes_sph.hpp"
 #include "boundaries/channel_scene.hpp"
+#include "case/failure_advice.hpp"
 #include "integrator/phase_timers.hpp"
 #include "neighbours/cell_grid.hpp"
 #include "neighbours/displacement_monitor.hpp"
@@ -50,7 +51,10 @@ class SphSolver {
   const ParticleStore& particles() const { return store_; }
   ParticleStore& particles() { return store_; }
   PhaseTimers& timers() { return timers_; }
+  // What happened at the last failed step (no advice: failure_advice() in src/case says what
+  // to change in the case), and its kind.
   const std::string& failure() const { return failure_; }
+  FailureKind failure_kind() const { return failure_kind_; }
   long lost_particles() const { return lost_; }
   // Particles that crossed the inlet and outlet planes since the start.
   const ChannelScene::Crossings& boundary_crossings() const { return crossings_; }
@@ -153,6 +157,7 @@ class SphSolver {
   bool track_balance_ = false;
   double particle_steps_ = 0.0;
   std::string failure_;
+  FailureKind failure_kind_ = FailureKind::none;
   std::vector<std::uint32_t> order_, outside_;
   std::vector<char> keep_;
 };
