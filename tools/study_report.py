@@ -759,11 +759,11 @@ def plot_contours_for(runs, pe, ref, out):
 def copy_run_files(runs, report_dir):
     base = os.path.join(report_dir, "runs")
     for r in runs:
+        dst = os.path.join(base, re.sub(r"[^A-Za-z0-9._+-]", "_", r.name))
+        if os.path.isdir(dst):  # a copy from an earlier report (of a run now stale, too)
+            shutil.rmtree(dst)
         if r.state == NOT_RUN:
             continue
-        dst = os.path.join(base, re.sub(r"[^A-Za-z0-9._+-]", "_", r.name))
-        if os.path.isdir(dst):
-            shutil.rmtree(dst)
         for f in COPIED:
             src = os.path.join(r.dir, f)
             if not os.path.isfile(src):
