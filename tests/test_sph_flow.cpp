@@ -12,15 +12,13 @@
 namespace adrsph {
 namespace {
 
-constexpr auto kFluid = static_cast<std::uint8_t>(Kind::fluid);
-
 // L2 error of the fluid velocity against u(y) = u_max (1 - (y/R)^2), relative to the L2 norm
 // of the profile.
 double poiseuille_l2_error(const SphSolver& s, const Case& c) {
   const auto& p = s.particles();
   double err = 0, norm = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] != kFluid) continue;
+    if (p.kind[i] != kFluidByte) continue;
     const double eta = p.y[i] / c.geometry.half_width;
     const double u = c.u_max() * (1 - eta * eta);
     err += (p.vx[i] - u) * (p.vx[i] - u) + p.vy[i] * p.vy[i];
@@ -216,7 +214,7 @@ TEST(Robustness, JitteredLatticeStaysStableWithShifting) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> jitter(-0.2 * c.particles.dx, 0.2 * c.particles.dx);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] != kFluid) continue;
+    if (p.kind[i] != kFluidByte) continue;
     p.x[i] += jitter(rng);
     p.y[i] = std::clamp(p.y[i] + jitter(rng), -c.geometry.half_width + 0.05,
                         c.geometry.half_width - 0.05);
@@ -237,7 +235,7 @@ TEST(Robustness, LostParticleStopsTheRunWithAMessage) {
   auto& p = solver.particles();
   const std::size_t n_fluid = solver.fluid_count();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] != kFluid) continue;
+    if (p.kind[i] != kFluidByte) continue;
     p.y[i] = c.geometry.half_width + 1.5 * c.particles.dx;  // inside the wall layers
     break;
   }

@@ -23,8 +23,7 @@ TEST(Species, PureReactionDecaysExponentially) {
   const double expected = c.species.c_init * std::exp(-c.species.k * solver.time());
   double worst = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.kind[i] == static_cast<std::uint8_t>(Kind::fluid))
-      worst = std::max(worst, std::fabs(p.c[i] / expected - 1.0));
+    if (p.kind[i] == kFluidByte) worst = std::max(worst, std::fabs(p.c[i] / expected - 1.0));
   EXPECT_LT(worst, 1e-6);
 }
 
@@ -40,7 +39,7 @@ double gaussian_diffusion_error(double dx) {
   auto& p = solver.particles();
   const double s0 = 1.0, amp = 1.0, xc = 10.0, yc = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] == static_cast<std::uint8_t>(Kind::wall)) continue;
+    if (p.kind[i] == kWallByte) continue;
     const double r2 = (p.x[i] - xc) * (p.x[i] - xc) + (p.y[i] - yc) * (p.y[i] - yc);
     p.c[i] = amp * std::exp(-r2 / (2 * s0 * s0));
   }
@@ -52,7 +51,7 @@ double gaussian_diffusion_error(double dx) {
   const double s2 = s0 * s0 + 2 * c.species.D * solver.time();
   double worst = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
+    if (p.kind[i] != kFluidByte) continue;
     const double r2 = (p.x[i] - xc) * (p.x[i] - xc) + (p.y[i] - yc) * (p.y[i] - yc);
     const double exact = amp * s0 * s0 / s2 * std::exp(-r2 / (2 * s2));
     worst = std::max(worst, std::fabs(p.c[i] - exact));
@@ -124,7 +123,7 @@ TEST(Species, OutletIsZeroFlux) {
     ParticleStore& s = solver.particles();
     int emptied = 0;
     for (std::size_t i = 0; i < s.size(); ++i)
-      if (s.kind[i] == static_cast<std::uint8_t>(Kind::outlet)) {
+      if (s.kind[i] == kOutletByte) {
         s.c[i] = 0.0;  // a buffer that would drain the fluid if it took part
         ++emptied;
       }
@@ -133,8 +132,7 @@ TEST(Species, OutletIsZeroFlux) {
     for (int k = 0; k < 20; ++k) ASSERT_TRUE(solver.step(dt)) << solver.failure();
     double worst = 0.0;
     for (std::size_t i = 0; i < s.size(); ++i)
-      if (s.kind[i] == static_cast<std::uint8_t>(Kind::fluid))
-        worst = std::max(worst, std::fabs(s.c[i] - 1.0));
+      if (s.kind[i] == kFluidByte) worst = std::max(worst, std::fabs(s.c[i] - 1.0));
     std::printf("D = %g: fluid C departs from 1 by %.2e next to an empty outflow buffer\n",
                 diffusivity, worst);
     EXPECT_LT(worst, 1e-12) << "D = " << diffusivity;
@@ -150,7 +148,7 @@ TEST(Species, OutletIsZeroFlux) {
   double highest = 0.0;
   const ParticleStore& s = solver.particles();
   for (std::size_t i = 0; i < s.size(); ++i)
-    if (s.kind[i] == static_cast<std::uint8_t>(Kind::fluid) &&
+    if (s.kind[i] == kFluidByte &&
         s.x[i] > c.u_max() * solver.time() + c.particles.dx)  // not a particle that entered
       highest = std::max(highest, s.c[i]);
   EXPECT_GT(highest, 1.0 + 1e-6);

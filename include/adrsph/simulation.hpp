@@ -25,6 +25,12 @@ inline constexpr int kResultsVersion = 2;
 
 // Particle kinds as stored in the field output (`kind` dataset).
 enum class Kind : std::uint8_t { fluid = 0, wall = 1, inlet = 2, outlet = 3 };
+// The store keeps kinds as plain bytes (a SoA array the passes read): these are their values,
+// one spelling for every pass.
+inline constexpr auto kFluidByte = static_cast<std::uint8_t>(Kind::fluid);
+inline constexpr auto kWallByte = static_cast<std::uint8_t>(Kind::wall);
+inline constexpr auto kInletByte = static_cast<std::uint8_t>(Kind::inlet);
+inline constexpr auto kOutletByte = static_cast<std::uint8_t>(Kind::outlet);
 
 // A read-only view of the particle state at one instant (plain arrays, SoA).
 struct FieldFrame {

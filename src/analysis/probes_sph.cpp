@@ -5,16 +5,12 @@
 
 namespace adrsph {
 
-namespace {
-constexpr auto kWall = static_cast<std::uint8_t>(Kind::wall);
-}  // namespace
-
 double ProbeSampler::concentration_at(double x, double y) const {
   double num = 0.0, den = 0.0;
   grid.for_each_near(x, y, rings, [&](std::uint32_t j) {
     // Every particle that carries species: fluid and both buffers (the outflow buffer
     // holds the C its particles carried through x = L, a zero-gradient continuation).
-    if (particles.kind[j] == kWall) return;
+    if (particles.kind[j] == kWallByte) return;
     const double rx = x - particles.x[j], ry = y - particles.y[j];
     const double w = particles.vol[j] * kernel.value(std::sqrt(rx * rx + ry * ry));
     num += w * particles.c[j];

@@ -15,13 +15,10 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
   const TaitEos eos = ctx.phys.eos;
   const QuinticKernel kernel = ctx.kernel;  // local copies: see interaction_pass.hpp
   const double mass = ctx.phys.mass;
-  constexpr auto wall = static_cast<std::uint8_t>(Kind::wall);
-  constexpr auto inlet = static_cast<std::uint8_t>(Kind::inlet);
-  constexpr auto outlet = static_cast<std::uint8_t>(Kind::outlet);
   // Outlet first: the walls below sample it (pressure reference at the outlet).
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (kind[i] != outlet) continue;
+    if (kind[i] != kOutletByte) continue;
     s.p[i] = static_cast<float>(eos.p_background);
     s.rho[i] = eos.rho0;
     s.vol[i] = static_cast<float>(mass / eos.rho0);
@@ -30,7 +27,7 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t ki = kind[i];
-    if (ki != wall && ki != inlet) continue;
+    if (ki != kWallByte && ki != kInletByte) continue;
     const double xi = x[i], yi = y[i];
     // Single precision, like the other neighbour passes (shepard averages of float p).
     float sw = 0.0f, sp = 0.0f, su = 0.0f, sv = 0.0f;
@@ -52,7 +49,7 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
     s.p[i] = static_cast<float>(pw);
     s.rho[i] = rhow;
     s.vol[i] = static_cast<float>(mass / rhow);
-    if (ki == wall) {
+    if (ki == kWallByte) {
       s.vx[i] = sw > 0.0f ? -double(su) / sw : 0.0;
       s.vy[i] = sw > 0.0f ? -double(sv) / sw : 0.0;
     }

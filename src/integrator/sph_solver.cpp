@@ -13,11 +13,6 @@
 
 namespace adrsph {
 
-namespace {
-constexpr auto kFluid = static_cast<std::uint8_t>(Kind::fluid);
-constexpr auto kWall = static_cast<std::uint8_t>(Kind::wall);
-}  // namespace
-
 SphSolver::SphSolver(const Case& c) : SphSolver(c, {}) {}
 
 SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
@@ -69,7 +64,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
 double SphSolver::species_inventory() const {
   double total = 0.0;
   for (std::size_t i = 0; i < store_.size(); ++i)
-    if (store_.kind[i] == kFluid) total += phys_.mass / store_.rho[i] * store_.c[i];
+    if (store_.kind[i] == kFluidByte) total += phys_.mass / store_.rho[i] * store_.c[i];
   return total;
 }
 
@@ -82,7 +77,7 @@ void SphSolver::bind(bool split) {
 
 std::size_t SphSolver::fluid_count() const {
   std::size_t n = 0;
-  for (std::size_t i = 0; i < store_.size(); ++i) n += store_.kind[i] == kFluid;
+  for (std::size_t i = 0; i < store_.size(); ++i) n += store_.kind[i] == kFluidByte;
   return n;
 }
 
@@ -96,7 +91,7 @@ void SphSolver::rebuild() {
       if (!keep_[i]) store_.x[i] = std::nan("");
     grid_.sort(std::span(store_.x).first(n), std::span(store_.y).first(n), order_, outside_);
     for (std::uint32_t i : outside_)
-      if (std::isfinite(store_.x[i]) && store_.kind[i] == kFluid) ++lost_;
+      if (std::isfinite(store_.x[i]) && store_.kind[i] == kFluidByte) ++lost_;
     store_.permute(order_);
   }
   {
@@ -135,7 +130,7 @@ void SphSolver::next_displacement(double a, bool from_start) {
   next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] == kWall || a < 0.0) {
+    if (s.kind[i] == kWallByte || a < 0.0) {
       next_dx_[i] = next_dy_[i] = 0.0f;
       continue;
     }
@@ -179,9 +174,9 @@ void SphSolver::advance(double a) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t k = s.kind[i];
-    if (k == kWall) continue;
+    if (k == kWallByte) continue;
     if constexpr (Save) s.save_start(i);
-    if (k == kFluid && S::momentum) {
+    if (k == kFluidByte && S::momentum) {
       // Midpoint: positions move with the current (transport) velocity, then u is updated.
       double tx = s.vx[i], ty = s.vy[i];
       if constexpr (S::shifting) {
@@ -197,7 +192,7 @@ void SphSolver::advance(double a) {
       s.x[i] = s.x_start[i] + a * s.vx[i];
       s.y[i] = s.y_start[i] + a * s.vy[i];
     }
-    if (k == kFluid) {
+    if (k == kFluidByte) {
       if constexpr (S::continuity) s.rho[i] = s.rho_start[i] + a * s.drho[i];
       s.c[i] = s.c_start[i] + a * s.dc[i];
     }
@@ -252,7 +247,7 @@ void SphSolver::react(double dt) {
   double consumed = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : consumed)
   for (std::size_t i = 0; i < n; ++i) {
-    if (store_.kind[i] != kFluid) continue;
+    if (store_.kind[i] != kFluidByte) continue;
     consumed += mass / store_.rho[i] * store_.c[i] * (1.0 - decay);
     store_.c[i] *= decay;
   }
@@ -296,9 +291,9 @@ bool SphSolver::check_state(double dt) {
   const double rho0 = case_.fluid.rho0;
 #pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max, c_dev) reduction(+ : bad)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] == kWall) continue;
+    if (s.kind[i] == kWallByte) continue;
     const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
-    const bool shifts = s.kind[i] == kFluid;  // sx, sy are only defined for fluid particles
+    const bool shifts = s.kind[i] == kFluidByte;  // sx, sy are only defined for fluid particles
     const double tx = s.vx[i] + (shifts ? s.sx[i] : 0.0), ty = s.vy[i] + (shifts ? s.sy[i] : 0.0);
     const double t2 = tx * tx + ty * ty;  // transport velocity (how far particles move)
     const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&
@@ -331,7 +326,7 @@ bool SphSolver::check_state(double dt) {
     failure_kind_ = FailureKind::unstable_step;
     // Restore the last good state (start of this step; walls were not advanced).
     for (std::size_t i = 0; i < n; ++i)
-      if (s.kind[i] != kWall) s.restore_start(i);
+      if (s.kind[i] != kWallByte) s.restore_start(i);
     density_predicted_ = false;
     return false;
   }

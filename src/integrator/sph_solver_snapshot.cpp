@@ -44,7 +44,7 @@ void SphSolver::restore(const SolverSnapshot& s) {
   scene_.set_inflow_row_tails(s.inflow_row_tail);
   store_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] > static_cast<std::uint8_t>(Kind::outlet))
+    if (s.kind[i] > kOutletByte)
       throw std::invalid_argument("checkpoint particle kind out of range");
     store_.x[i] = s.x[i];
     store_.y[i] = s.y[i];

@@ -47,7 +47,7 @@ void ParticleStore::reset_padding() {
   vx[k] = vy[k] = 0.0;
   rho[k] = 1.0;
   c[k] = 0.0;
-  kind[k] = static_cast<std::uint8_t>(Kind::wall);
+  kind[k] = kWallByte;
   p[k] = 0.0f;
   vol[k] = 0.0f;
   diffusion_mask[k] = 0.0f;

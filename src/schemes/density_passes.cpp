@@ -44,7 +44,7 @@ void summation_density(ParticleStore& s, const PassContext& ctx, const float* pr
   const QuinticKernel kernel = ctx.kernel;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
+    if (s.kind[i] != kFluidByte) continue;
     // A prediction is missing (NaN) for a particle that was in the inflow buffer then.
     const float sum = predicted && !std::isnan(predicted[i])
                           ? predicted[i]
@@ -57,7 +57,7 @@ void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass) {
   const std::size_t n = s.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) continue;
+    if (s.kind[i] != kFluidByte) continue;
     s.p[i] = static_cast<float>(eos.pressure(s.rho[i]));
     s.vol[i] = static_cast<float>(mass / s.rho[i]);
   }

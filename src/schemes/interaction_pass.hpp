@@ -53,7 +53,7 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
 
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] != static_cast<std::uint8_t>(Kind::fluid)) {
+    if (s.kind[i] != kFluidByte) {
       // Buffers do not shift; a particle that enters the fluid at the end of this step is
       // then checked (check_state) with a defined zero, not a stale value of its index.
       if constexpr (Scheme::shifting) s.sx[i] = s.sy[i] = 0.0f;

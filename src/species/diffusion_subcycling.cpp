@@ -6,12 +6,6 @@
 
 namespace adrsph {
 
-namespace {
-constexpr auto kFluid = static_cast<std::uint8_t>(Kind::fluid);
-constexpr auto kInlet = static_cast<std::uint8_t>(Kind::inlet);
-constexpr auto kOutlet = static_cast<std::uint8_t>(Kind::outlet);
-}  // namespace
-
 void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassContext& ctx) {
   const std::size_t n = s.size();
   weight_.resize(ctx.neighbours.total());
@@ -25,7 +19,7 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
   float* w = weight_.data();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] != kFluid) continue;
+    if (s.kind[i] != kFluidByte) continue;
     const double xi = x[i], yi = y[i], voli = vol[i];
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
 #pragma omp simd
@@ -50,7 +44,7 @@ double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
   double exchange = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : exchange)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] != kFluid) continue;
+    if (s.kind[i] != kFluidByte) continue;
     const double ci = cc[i];
     double sum = 0.0;
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
@@ -61,7 +55,7 @@ double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
       double from_buffers = 0.0;
       for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
         const std::uint8_t kj = s.kind[nb[k]];
-        if (kj == kInlet || kj == kOutlet) from_buffers += w[k] * (ci - cc[nb[k]]);
+        if (kj == kInletByte || kj == kOutletByte) from_buffers += w[k] * (ci - cc[nb[k]]);
       }
       exchange += s.vol[i] * from_buffers;
     }
@@ -147,7 +141,7 @@ double DiffusionSubcycler::superstep(ParticleStore& s, const PassContext& ctx, d
   const std::size_t real = n - 1;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < real; ++i)
-    if (s.kind[i] == kFluid) s.c[i] = ym1_[i];
+    if (s.kind[i] == kFluidByte) s.c[i] = ym1_[i];
   return exchange;
 }
 

@@ -5,19 +5,16 @@ namespace adrsph {
 
 double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx) {
   const std::size_t n = s.size();
-  constexpr auto fluid = static_cast<std::uint8_t>(Kind::fluid);
-  constexpr auto inlet = static_cast<std::uint8_t>(Kind::inlet);
-  constexpr auto outlet = static_cast<std::uint8_t>(Kind::outlet);
   const std::uint32_t* nb = ctx.neighbours.data();
   const double eta2 = ctx.phys.eta2;
   double total = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : total)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] != fluid) continue;
+    if (s.kind[i] != kFluidByte) continue;
     double rate = 0.0;
     for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
       const std::uint32_t j = nb[k];
-      if (s.kind[j] != inlet && s.kind[j] != outlet) continue;
+      if (s.kind[j] != kInletByte && s.kind[j] != kOutletByte) continue;
       const double dx = s.x[i] - s.x[j], dy = s.y[i] - s.y[j], r2 = dx * dx + dy * dy;
       const double lap_weight = ctx.kernel.laplacian_weight(r2, eta2);
       rate += species_diffusion_pair<double>(ctx.phys.diffusivity, s.vol[i], s.vol[j], lap_weight,
