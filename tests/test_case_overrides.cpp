@@ -79,6 +79,8 @@ TEST(Overrides, TheMatrixNeedsNoCopies) {
         const Case c = lfr({std::string("scheme=") + scheme, std::string("particles.dx=") + dx,
                             std::string("species.D=") + D});
         EXPECT_STREQ(to_string(c.scheme), scheme);
+        EXPECT_DOUBLE_EQ(c.particles.dx, std::stod(dx));
+        EXPECT_DOUBLE_EQ(c.species.D, std::stod(D));
       }
 }
 

@@ -92,8 +92,8 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
         const real sv = viscous_pair(mass, four_nu, r * reg * inv, lap_weight);
         ax += sp * gwx + sv * uxij;
         ay += sp * gwy + sv * uyij;
-        cdil += species_dilatation_pair(volj, u_dot_gradw);
       }
+      if constexpr (Scheme::dilatation) cdil += species_dilatation_pair(volj, u_dot_gradw);
       if constexpr (Scheme::continuity) {
         const real rho_ij = static_cast<real>(rhoi_d - rho[j]);
         drho += continuity_pair(rhoi, volj, u_dot_gradw) +

@@ -12,6 +12,7 @@ struct ConventionalScheme {
   static constexpr bool continuity = false;
   static constexpr bool shifting = false;
   static constexpr bool momentum = true;
+  static constexpr bool dilatation = true;  // eq. 12's -C div u term (the flow is compressible)
 };
 
 // Modern WCSPH with transport velocity: continuity with density diffusion (eq. 8),
@@ -22,6 +23,7 @@ struct ModernScheme {
   static constexpr bool continuity = true;
   static constexpr bool shifting = true;
   static constexpr bool momentum = true;
+  static constexpr bool dilatation = true;
 };
 
 // Prescribed (kinematic) flow: particles move with the analytic velocity, rho = rho0;
@@ -32,6 +34,7 @@ struct PrescribedFlow {
   static constexpr bool continuity = false;
   static constexpr bool shifting = false;
   static constexpr bool momentum = false;
+  static constexpr bool dilatation = false;  // div u = 0 exactly
 };
 
 }  // namespace adrsph
