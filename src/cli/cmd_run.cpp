@@ -82,6 +82,18 @@ std::vector<std::string> write_outputs(const fs::path& dir, const Case& c, const
   return files;
 }
 
+// Processes ready to run on the machine right now besides this one (/proc/loadavg's
+// runnable count), -1 when unknown. A CPU-bound neighbour is nearly always runnable; unlike
+// the load average this does not remember a run that has just ended.
+int other_runnable() {
+  std::ifstream in("/proc/loadavg");
+  double l1 = 0, l5 = 0, l15 = 0;
+  int runnable = 0, total = 0;
+  char slash = 0;
+  if (!(in >> l1 >> l5 >> l15 >> runnable >> slash >> total) || slash != '/') return -1;
+  return std::max(0, runnable - 1);
+}
+
 // The machine's 1-minute load average, -1 when unknown.
 double load_average() {
   double load[1];
@@ -240,13 +252,13 @@ int run(const RunOptions& o) {
   const int cores = static_cast<int>(std::thread::hardware_concurrency());
   const char* policy = std::getenv("OMP_WAIT_POLICY");
   const bool passive = policy && std::string_view(policy) == "passive";
-  if (!o.quiet && threads > 1 && !passive && cores > 0 && load_start + threads > cores + 0.5)
+  const int others = other_runnable();
+  if (!o.quiet && threads > 1 && !passive && cores > 0 && others >= 0 && others + threads > cores)
     std::fprintf(stderr,
-                 "adrsph run: warning: %d threads on %d cores with a load average of %.1f: "
-                 "threads that share a core wait for each other at every pass (up to 30x "
-                 "slower); set OMP_WAIT_POLICY=passive or use --threads %d\n",
-                 threads, cores, load_start,
-                 std::max(1, cores - static_cast<int>(load_start + 0.5)));
+                 "adrsph run: warning: %d threads on %d cores while %d other process(es) are "
+                 "running: threads that share a core wait for each other at every pass (up to "
+                 "30x slower); set OMP_WAIT_POLICY=passive or use --threads %d\n",
+                 threads, cores, others, std::max(1, cores - others));
   RunResult r;
   try {
     r = run_simulation(c, observer, setup.resume ? &setup.base.state : nullptr);
