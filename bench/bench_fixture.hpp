@@ -55,7 +55,6 @@ struct Fixture {
   Fixture(Variant v, double dx) : c(reactor_case(v, dx)), solver(c), kernel(c.h()) {
     dt = solver.dt_limits().chosen;
     // The constants of SphSolver's constructor (plausible values are enough for timing).
-    phys.mass = c.fluid.rho0 * dx * dx;
     phys.eta2 = 0.01 * c.h() * c.h();
     phys.four_nu = 4.0 * c.fluid.nu;
     phys.delta_h_c0_2 = 2.0 * c.modern.delta * c.h() * c.c0();

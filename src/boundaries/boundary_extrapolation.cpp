@@ -14,7 +14,7 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
   const std::uint32_t* nb = ctx.neighbours.data();
   const TaitEos eos = ctx.phys.eos;
   const QuinticKernel kernel = ctx.kernel;  // local copies: see interaction_pass.hpp
-  const double mass = ctx.phys.mass;
+  const double mass = s.mass;
   // Outlet first: the walls below sample it (pressure reference at the outlet).
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {

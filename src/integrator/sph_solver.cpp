@@ -18,7 +18,6 @@ SphSolver::SphSolver(const Case& c) : SphSolver(c, {}) {}
 SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
     : case_(c), scene_(c), kernel_(c.h()) {
   const double h = c.h();
-  phys_.mass = c.fluid.rho0 * c.particles.dx * c.particles.dx;
   phys_.eta2 = 0.01 * h * h;
   phys_.four_nu = 4.0 * c.fluid.nu;
   phys_.delta_h_c0_2 = 2.0 * c.modern.delta * h * c.c0();
@@ -64,7 +63,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
 double SphSolver::species_inventory() const {
   double total = 0.0;
   for (std::size_t i = 0; i < store_.size(); ++i)
-    if (store_.kind[i] == kFluidByte) total += phys_.mass / store_.rho[i] * store_.c[i];
+    if (store_.kind[i] == kFluidByte) total += store_.mass / store_.rho[i] * store_.c[i];
   return total;
 }
 
@@ -154,7 +153,7 @@ void SphSolver::evaluate_impl(double a_next, bool from_start) {
   if constexpr (S::momentum) {
     if constexpr (!S::summation_density) {
       ScopedPhase timer(timers_, Phase::density);
-      fluid_pressure(store_, phys_.eos, phys_.mass);
+      fluid_pressure(store_, phys_.eos, store_.mass);
     }
     ScopedPhase timer(timers_, Phase::boundaries);
     extrapolate_to_boundaries(store_, ctx);
@@ -243,7 +242,7 @@ void SphSolver::react(double dt) {
   // operators because k is uniform (docs/benchmark.md, section 6).
   const double decay = species_decay(case_.species.k, dt);
   const std::size_t n = store_.size();
-  const double mass = phys_.mass;
+  const double mass = store_.mass;
   double consumed = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : consumed)
   for (std::size_t i = 0; i < n; ++i) {

@@ -38,7 +38,7 @@ void summation_density(ParticleStore& s, const PassContext& ctx, const float* pr
   const double* y = s.y.data();
   const std::uint32_t* nb = ctx.neighbours.data();
   const double self = ctx.kernel.value(0.0);
-  const double mass = ctx.phys.mass;
+  const double mass = s.mass;
   // Local copies: with references g++ reloaded them in the loop (2x slower, measured).
   const TaitEos eos = ctx.phys.eos;
   const QuinticKernel kernel = ctx.kernel;

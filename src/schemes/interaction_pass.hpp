@@ -42,7 +42,7 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
   // them inside the loops (2x slower, measured on the summation density).
   const QuinticKernel kernel = ctx.kernel;
   const PhysicsConstants& ph = ctx.phys;
-  const real eta2 = static_cast<real>(ph.eta2), mass = static_cast<real>(ph.mass);
+  const real eta2 = static_cast<real>(ph.eta2), mass = static_cast<real>(s.mass);
   const real four_nu = static_cast<real>(ph.four_nu), dh = static_cast<real>(ph.delta_h_c0_2);
   const real diffusivity = static_cast<real>(ph.diffusivity);
   // Conventional scheme: the summation density at the next positions (pass_context.hpp).

@@ -11,7 +11,6 @@
 namespace adrsph {
 
 struct PhysicsConstants {
-  double mass = 0.0;          // m = rho0 dx^2
   double eta2 = 0.0;          // (0.1 h)^2, eqs. (7), (12)
   double four_nu = 0.0;       // 2 (nu_i + nu_j) with uniform nu
   double delta_h_c0_2 = 0.0;  // 2 delta h c0, eq. (8)
