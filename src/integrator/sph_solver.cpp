@@ -120,16 +120,16 @@ void SphSolver::evaluate() {
   density_predicted_ = false;  // it predicted for positions no step will produce
 }
 
-template <class S>
 void SphSolver::next_displacement(double a, bool from_start) {
   const ParticleStore& s = store_;
   const std::size_t n = s.size();
   next_dx_.resize(n + 1);
   next_dy_.resize(n + 1);
   next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
+  const bool predict = a >= 0.0;     // a < 0: no prediction wanted (evaluate())
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] == kWallByte || a < 0.0) {
+    if (!predict || s.kind[i] == kWallByte) {
       next_dx_[i] = next_dy_[i] = 0.0f;
       continue;
     }
@@ -147,7 +147,7 @@ void SphSolver::evaluate_impl(double a_next, bool from_start) {
     ScopedPhase timer(timers_, Phase::density);
     density_sum_.resize(store_.size() + 1);
     summation_density(store_, ctx, density_predicted_ ? density_sum_.data() : nullptr);
-    next_displacement<S>(a_next, from_start);
+    next_displacement(a_next, from_start);
     ctx.next_density = {density_sum_.data(), next_dx_.data(), next_dy_.data()};
   }
   if constexpr (S::momentum) {

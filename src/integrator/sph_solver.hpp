@@ -106,7 +106,6 @@ class SphSolver {
   }
   // The displacement of the coming stage, next_dx_ = base + a u - x (base: x_start, or x when
   // a_base < 0, before the first stage), as advance() will apply it.
-  template <class S>
   void next_displacement(double a, bool from_start);
   template <class S, bool Ale>
   void bind(bool split);
