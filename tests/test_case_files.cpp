@@ -76,10 +76,14 @@ TEST(CaseFiles, NameDefaultsToFileStem) {
   EXPECT_DOUBLE_EQ(c.particles.dx, Case{}.particles.dx);  // everything else: defaults
 }
 
-TEST(CaseFiles, EmptyFileIsTheDefaultCase) {
+// Every key has a default, but a file without any key is more likely the wrong file (or one
+// not saved) than a wish for the default case: refused. One key is enough.
+TEST(CaseFiles, EmptyFileIsRefusedAndOneKeyIsEnough) {
   test::TempDir dir;
-  test::write_file(dir / "empty.toml", "");
-  EXPECT_NO_THROW(load_case(dir / "empty.toml"));
+  test::write_file(dir / "empty.toml", "# only a comment\n\n");
+  EXPECT_THROW(load_case(dir / "empty.toml"), CaseError);
+  test::write_file(dir / "one.toml", "name = \"one\"\n");
+  EXPECT_NO_THROW(load_case(dir / "one.toml"));
 }
 
 TEST(CaseFiles, EveryKeyIsRead) {

@@ -113,10 +113,11 @@ TEST(CliRun, BadOptionExits2) {
 TEST(CliRun, NumericalFailureWritesOutputsAndExits3) {
   test::TempDir dir;
   make_old_output(dir / "out");
-  // A fixed time step 200x above the acoustic limit blows the flow up within a few steps.
+  // A fixed time step 200x above the acoustic limit blows the flow up within a few steps
+  // (refused at start without --force: test_hostile_input.cpp).
   const auto r = test::run_adrsph("run " + lfr() +
                                       " --set particles.dx=0.5 --set time.dt=0.01"
-                                      " --set time.max_steps=50 --out out",
+                                      " --set time.max_steps=50 --force --out out",
                                   dir.path());
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_THAT(r.err, HasSubstr("failed"));
@@ -132,7 +133,8 @@ TEST(CliRun, HelpDescribesEveryOption) {
   test::TempDir dir;
   const auto r = test::run_adrsph("run --help", dir.path());
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* s : {"--set", "--out", "--threads", "--quiet", "runs/<case name>", "Exit codes"})
+  for (const char* s :
+       {"--set", "--out", "--threads", "--quiet", "--force", "runs/<case name>", "Exit codes"})
     EXPECT_THAT(r.out, HasSubstr(s));
   EXPECT_EQ(test::run_adrsph("--help", dir.path()).exit_code, 0);
 }

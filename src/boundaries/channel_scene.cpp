@@ -24,6 +24,16 @@ ChannelScene::ChannelScene(const Case& c)
   row_tail_x_.assign(ny, -(inlet_layers_ - 0.5) * dx_);
 }
 
+double channel_particle_estimate(const Case& c) {
+  const auto& p = c.particles;
+  const double rows = std::round(2.0 * c.geometry.half_width / p.dx);
+  const double columns = std::round(c.geometry.length / p.dx);
+  const double buffers = static_cast<double>(p.inlet_layers) + p.outlet_layers;
+  // Fluid and buffer rows, then the wall layers above and below, which span the buffers too.
+  return rows * (columns + buffers) +
+         2.0 * p.wall_layers * (columns + buffers + 2.0 * p.wall_layers);
+}
+
 std::size_t ChannelScene::initial_count() const {
   std::size_t n = 0;
   for_each_initial([&](double, double, Kind) { ++n; });

@@ -12,6 +12,11 @@
 
 namespace adrsph {
 
+// Particles of the initial state of case `c` (initial_count()), computed in double without
+// building the scene, so that a spacing far too small for any memory gives a large number
+// instead of an overflow (the start-up check of `adrsph run`, src/cli/run_preflight.cpp).
+double channel_particle_estimate(const Case& c);
+
 class ChannelScene {
  public:
   explicit ChannelScene(const Case& c);

@@ -115,6 +115,12 @@ std::string apply_override(Case& c, const std::string& text) {
 Case load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   const std::string name = file.string();
   const toml::table doc = parse_file(file);
+  // Every key has a default, so an empty file would run the default case under the file's
+  // name: more likely a file that was not saved or the wrong file.
+  if (doc.empty())
+    throw CaseError(name, "",
+                    "the file holds no keys; expected a case (cases/README.md), e.g. a copy of "
+                    "cases/lfr.toml");
   Case c;
   c.source = file;
   c.name = file.stem().string();  // `name` is optional: the file name without .toml

@@ -37,16 +37,25 @@ class Checker {
   }
   void positive(const std::string& key, double v) { range(key, v, 0.0, true, kInf, false); }
   void non_negative(const std::string& key, double v) { range(key, v, 0.0, false, kInf, false); }
-  void at_least(const std::string& key, long v, long lo) {
-    require(v >= lo, key,
-            "expected an integer >= " + std::to_string(lo) + ", got " + std::to_string(v));
+  // Rows of particles: at least what the kernel support needs, at most kMaxLayers (more
+  // only cost memory, and the count must not overflow).
+  void layers(const std::string& key, long v, long lo) {
+    require(v >= lo && v <= kMaxLayers, key,
+            "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(kMaxLayers) +
+                "], got " + std::to_string(v));
   }
+  static constexpr long kMaxLayers = 100;
 
   static constexpr double kInf = std::numeric_limits<double>::infinity();
 };
 
+// Largest concentration or pressure scale the single-precision particle state carries with
+// room for the sums it enters.
+constexpr double kMaxStateValue = 1e20;
+
 bool valid_name(const std::string& n) {
-  if (n.empty() || n.front() == '.' || n.front() == '-') return false;
+  // At most 200 characters: the output directory <name>.partial must fit a file name (255).
+  if (n.empty() || n.size() > 200 || n.front() == '.' || n.front() == '-') return false;
   for (const char ch : n) {
     const auto u = static_cast<unsigned char>(ch);
     if (!(std::isalnum(u) || ch == '_' || ch == '-' || ch == '.' || ch == '+')) return false;
@@ -79,9 +88,9 @@ void check_geometry(Checker& k, const Case& c) {
   k.require(across >= 4, "particles.dx",
             "expected at least 4 particles across the channel (dx <= half_width/2 = " +
                 num(c.geometry.half_width / 2.0) + "), got dx = " + num(dx));
-  k.at_least("particles.wall_layers", c.particles.wall_layers, 3);
-  k.at_least("particles.inlet_layers", c.particles.inlet_layers, 4);
-  k.at_least("particles.outlet_layers", c.particles.outlet_layers, 3);
+  k.layers("particles.wall_layers", c.particles.wall_layers, 3);
+  k.layers("particles.inlet_layers", c.particles.inlet_layers, 4);
+  k.layers("particles.outlet_layers", c.particles.outlet_layers, 3);
   k.range("particles.skin", c.particles.skin, 0.0, false, 1.0, false);
 }
 
@@ -90,12 +99,28 @@ void check_fluid_species(Checker& k, const Case& c) {
   k.positive("fluid.nu", c.fluid.nu);
   k.positive("fluid.u_bulk", c.fluid.u_bulk);
   k.positive("fluid.c0_factor", c.fluid.c0_factor);
-  k.range("fluid.gamma", c.fluid.gamma, 1.0, false, Checker::kInf, false);
-  k.non_negative("fluid.background_pressure", c.fluid.background_pressure);
+  // Tait exponents of real fluids lie in [1, 7]; above 20, (rho/rho0)^gamma turns the
+  // density noise of a weakly compressible flow into pressures that overflow.
+  k.range("fluid.gamma", c.fluid.gamma, 1.0, false, 20.0, false);
+  // A fraction of rho0 c0^2; above 10 the pressure differences of the flow (~1e-2 rho0 c0^2)
+  // sink below the single-precision resolution of p + p_b.
+  k.range("fluid.background_pressure", c.fluid.background_pressure, 0.0, false, 10.0, false);
   k.non_negative("species.D", c.species.D);
   k.non_negative("species.k", c.species.k);
-  k.non_negative("species.c_in", c.species.c_in);
-  k.non_negative("species.c_init", c.species.c_init);
+  // The particle state is single precision (largest value 3.4e38): concentrations and the
+  // pressure scale enter sums multiplied by kernel gradients (~1/dx^3) and D or nu.
+  k.range("species.c_in", c.species.c_in, 0.0, false, kMaxStateValue, false);
+  k.range("species.c_init", c.species.c_init, 0.0, false, kMaxStateValue, false);
+  if (k.problem) return;
+  const double pressure_scale = c.fluid.rho0 * c.c0() * c.c0();
+  // Name the factor that makes it large.
+  const char* culprit = c.fluid.rho0 >= c.c0() * c.c0()             ? "fluid.rho0"
+                        : c.fluid.c0_factor >= 2.0 * c.fluid.u_bulk ? "fluid.c0_factor"
+                                                                    : "fluid.u_bulk";
+  k.require(pressure_scale <= kMaxStateValue, culprit,
+            "expected a pressure scale rho0 c0^2 (rho0 = " + num(c.fluid.rho0) + ", c0 = " +
+                num(c.fluid.c0_factor) + " x 2 u_bulk) of at most " + num(kMaxStateValue) +
+                " (single-precision particle state), got " + num(pressure_scale));
   k.require(!c.species.ale || c.scheme == Scheme::modern, "species.ale",
             "expected false with scheme = \"conventional\" (the ALE term du . grad C exists only "
             "in the modern scheme, whose particles move with u + du)");
@@ -135,9 +160,11 @@ void check_time_output(Checker& k, const Case& c) {
 std::optional<Problem> find_problem(const Case& c) {
   Checker k;
   k.require(valid_name(c.name), "name",
-            "expected a non-empty name of letters, digits and _ - . + (it names the output "
+            "expected a name of 1 to 200 letters, digits and _ - . + (it names the output "
             "directory runs/<name>), got \"" +
-                c.name + "\"");
+                (c.name.size() > 60 ? c.name.substr(0, 60) + "...\" (" +
+                                          std::to_string(c.name.size()) + " characters)"
+                                    : c.name + "\""));
   check_geometry(k, c);
   check_fluid_species(k, c);
   check_time_output(k, c);

@@ -111,7 +111,8 @@ Command register_compare(CLI::App& app) {
   sub->add_option("run_dir", o->run_dir, "Run directory (adrsph run --out)")->required();
   sub->add_option("ref_dir", o->ref_dir, "Reference directory (adrsph reference --out)")
       ->required();
-  sub->add_option("--out", o->out, "Markdown report (default RUN_DIR/compare.md)");
+  sub->add_option("--out", o->out, "Markdown report (default RUN_DIR/compare.md)")
+      ->check(kNonEmptyPath);
   sub->add_flag("!--no-plot", o->plot, "Do not draw the PNG");
   return {sub, [o] { return run_compare(*o); }};
 }

@@ -154,7 +154,8 @@ Command register_reference(CLI::App& app) {
   sub->add_option("--nx", o->nx, "Cells along x (default 1600, the paper's mesh)")
       ->check(CLI::Range(2, 1 << 20));
   sub->add_option("--ny", o->ny, "Cells across y (default 160)")->check(CLI::Range(1, 1 << 20));
-  sub->add_option("--out", o->out_dir, "Output directory (default runs/reference_<case name>)");
+  sub->add_option("--out", o->out_dir, "Output directory (default runs/reference_<case name>)")
+      ->check(kNonEmptyPath);
   sub->add_flag("--convergence", o->convergence,
                 "Solve on nx/4, nx/2, nx and 2nx (x ny likewise; 3200x320 takes ~40 s and "
                 "2.3 GB), print station averages, relative changes, observed orders and "

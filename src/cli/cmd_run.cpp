@@ -25,6 +25,7 @@
 #include "adrsph/simulation.hpp"
 #include "cli/commands.hpp"
 #include "cli/run_observer.hpp"
+#include "cli/run_preflight.hpp"
 #include "cli/run_summary.hpp"
 
 namespace adrsph::cli {
@@ -43,6 +44,7 @@ struct RunOptions {
   std::string restart;
   int threads = 0;
   bool quiet = false;
+  bool force = false;
 };
 
 void error(const std::string& what) {
@@ -213,6 +215,17 @@ int run(const RunOptions& o) {
     return kExitBadInput;
   }
   const Case& c = setup.c;
+  // Memory, cost and a fixed step's stability, before anything is allocated or written.
+  if (const auto p = preflight(c, available_memory_bytes()); p && !(p->forceable && o.force)) {
+    // Blamed on --set when the key came from there, as the case loader does.
+    const auto& sets = setup.base.overrides;
+    const bool from_set = std::any_of(sets.begin(), sets.end(), [&](const std::string& s) {
+      return s.rfind(p->key + "=", 0) == 0;
+    });
+    const std::string source = c.source.empty() ? std::string("<case>") : c.source.string();
+    error(CaseError(from_set ? "--set" : source, p->key, p->message).what());
+    return kExitBadInput;
+  }
   // A continued run repeats the interrupted one exactly with the same thread count.
   const int wanted = o.threads > 0 ? o.threads : (setup.resume ? setup.base.threads : 0);
   if (wanted > 0) omp_set_num_threads(wanted);
@@ -337,21 +350,27 @@ Command register_run(CLI::App& app) {
       "change only time.t_end, time.max_steps, time.stop_when_steady and output.*).\n"
       "Exit codes: 0 ok, 1 I/O or internal error, 2 bad input (case file, key, value, option),\n"
       "3 numerical failure, 4 interrupted (checkpoint written).\n"
+      "Refused at start (exit 2): a particle count that does not fit in memory, a run that could\n"
+      "never end, a fixed time.dt above the stable limit (unless --force); docs/robustness.md.\n"
       "Example: adrsph run cases/lfr.toml --set scheme=conventional --set particles.dx=0.5");
   sub->add_option("case", opts->case_file, "Case file (TOML); every key: cases/README.md");
   sub->add_option("--set", opts->sets,
                   "Override a case key, e.g. --set species.D=0.1 --set scheme=conventional "
                   "(dotted key, TOML value; bare words are strings). Repeatable")
       ->allow_extra_args(false);
-  sub->add_option("--out", opts->out, "Output directory (default: runs/<case name>)");
+  sub->add_option("--out", opts->out, "Output directory (default: runs/<case name>)")
+      ->check(kNonEmptyPath);
   sub->add_option("--restart", opts->restart,
                   "Continue the interrupted run whose output directory is DIR (its checkpoint "
-                  "DIR.partial/checkpoint.h5 holds the case)");
+                  "DIR.partial/checkpoint.h5 holds the case)")
+      ->check(kNonEmptyPath);
   sub->add_option("--threads", opts->threads,
                   "OpenMP threads (default: OMP_NUM_THREADS, else all cores; with --restart: "
                   "the interrupted run's)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, kMaxThreads));
   sub->add_flag("--quiet,-q", opts->quiet, "No progress line");
+  sub->add_flag("--force", opts->force,
+                "Run a fixed time.dt above the stable limit anyway (refused otherwise)");
   return {sub, [opts] { return run(*opts); }};
 }
 

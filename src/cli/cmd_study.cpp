@@ -261,14 +261,17 @@ Command register_study(CLI::App& app) {
   sub->add_flag("--resume", o->resume,
                 "Continue a study whose runs directory already holds runs (without it the "
                 "study refuses to start there)");
-  sub->add_option("--jobs,-j", o->jobs, "Runs at once (default 1)")->check(CLI::PositiveNumber);
+  sub->add_option("--jobs,-j", o->jobs, "Runs at once (default 1)")
+      ->check(CLI::Range(1, kMaxThreads));
   sub->add_option("--threads", o->threads,
                   "Threads in all (default: the study file's `threads`, else all cores); each "
                   "run gets max(1, threads / jobs)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--out", o->out, "Runs directory (default: the study file's runs_dir)");
+      ->check(CLI::Range(1, kMaxThreads));
+  sub->add_option("--out", o->out, "Runs directory (default: the study file's runs_dir)")
+      ->check(kNonEmptyPath);
   sub->add_option("--report", o->report,
-                  "Report directory (default: the study file's report_dir, else RUNS_DIR/report)");
+                  "Report directory (default: the study file's report_dir, else RUNS_DIR/report)")
+      ->check(kNonEmptyPath);
   sub->add_flag("--dry-run", o->dry_run,
                 "Print the runs (name, state: done, resume or new, and --set) and exit");
   return {sub, [o] { return run_study_guarded(*o); }};

@@ -13,6 +13,16 @@ inline constexpr int kExitBadInput = 2;     // bad case file, key, value, missin
 inline constexpr int kExitRunFailed = 3;    // numerical failure (NaN, blow-up, lost particles)
 inline constexpr int kExitInterrupted = 4;  // SIGINT/SIGTERM: checkpoint written, continue later
 
+// Largest --threads accepted: beyond it the OpenMP runtime cannot start the threads.
+inline constexpr int kMaxThreads = 1024;
+
+// A path option given as an empty string (`--out ""`) is refused rather than read as absent.
+inline const CLI::Validator kNonEmptyPath(
+    [](std::string& s) {
+      return s.empty() ? std::string("expected a path, got an empty string") : "";
+    },
+    "PATH");
+
 // Each adds its subcommand to `app` and returns it with the function to run after parsing
 // when that subcommand was chosen; the function's result is the exit code.
 struct Command {
