@@ -110,6 +110,10 @@ class CaseError : public std::runtime_error {
 // Read and validate a case file; `overrides` are "key=value" strings (dotted keys, TOML
 // values) applied before validation. Throws CaseError.
 Case load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+// The same for the text of a case file; `file` names it in messages and gives the default
+// name (the fuzz target, tests/fuzz, reads cases this way).
+Case load_case_text(const std::string& text, const std::filesystem::path& file,
+                    const std::vector<std::string>& overrides = {});
 
 // Check physical and geometric consistency (D >= 0, dx fits the channel, ...). Throws CaseError.
 void validate_case(const Case& c);

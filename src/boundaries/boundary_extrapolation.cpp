@@ -23,7 +23,10 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
     s.rho[i] = eos.rho0;
     s.vol[i] = static_cast<float>(mass / eos.rho0);
   }
-  // Walls and inlet read only fluid and outlet particles, so writing their own p is race-free.
+  // Walls and inlet read only fluid and outlet particles (fluid_side = 1) and write only their
+  // own p, rho, V and wall velocity. The reads of a neighbour's p and velocity are behind the
+  // mask, not multiplied by it, so no thread ever reads a boundary value that another thread
+  // is writing (a data race even when the product is zero).
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t ki = kind[i];
@@ -38,11 +41,12 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
       const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
       // Fluid and outlet particles are the "fluid side" a boundary particle samples (a float
       // mask, not kind[j]: a byte gather keeps g++ from vectorising the loop).
-      const float w = side[j] * kernel.value<float>(std::sqrt(dx * dx + dy * dy));
+      const bool sampled = side[j] > 0.0f;
+      const float w = sampled ? side[j] * kernel.value<float>(std::sqrt(dx * dx + dy * dy)) : 0.0f;
       sw += w;
-      sp += w * p[j];
-      su += w * static_cast<float>(vx[j]);
-      sv += w * static_cast<float>(vy[j]);
+      sp += w * (sampled ? p[j] : 0.0f);
+      su += w * (sampled ? static_cast<float>(vx[j]) : 0.0f);
+      sv += w * (sampled ? static_cast<float>(vy[j]) : 0.0f);
     }
     const double pw = sw > 0.0f ? double(sp) / sw : eos.p_background;
     const double rhow = eos.density(pw);

@@ -55,7 +55,7 @@ void apply_entries(Case& c, std::vector<Entry> entries, const std::string& file)
   }
 }
 
-toml::table parse_file(const std::filesystem::path& file) {
+std::string read_case_file(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
   if (!std::filesystem::exists(file, ec))
@@ -66,8 +66,12 @@ toml::table parse_file(const std::filesystem::path& file) {
   if (!in) throw CaseError(name, "", "cannot read the case file: permission denied or unreadable");
   std::ostringstream text;
   text << in.rdbuf();
+  return text.str();
+}
+
+toml::table parse_text(const std::string& text, const std::string& name) {
   try {
-    return toml::parse(text.str(), name);
+    return toml::parse(text, name);
   } catch (const toml::parse_error& e) {
     const auto& b = e.source().begin;
     throw CaseError(name + ":" + std::to_string(b.line) + ":" + std::to_string(b.column), "",
@@ -113,8 +117,13 @@ std::string apply_override(Case& c, const std::string& text) {
 }  // namespace
 
 Case load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return load_case_text(read_case_file(file), file, overrides);
+}
+
+Case load_case_text(const std::string& text, const std::filesystem::path& file,
+                    const std::vector<std::string>& overrides) {
   const std::string name = file.string();
-  const toml::table doc = parse_file(file);
+  const toml::table doc = parse_text(text, name);
   // Every key has a default, so an empty file would run the default case under the file's
   // name: more likely a file that was not saved or the wrong file.
   if (doc.empty())
