@@ -228,6 +228,18 @@ INSTANTIATE_TEST_SUITE_P(
         Hostile{"HugeDiffusivity", {}, with(kRun, " --set species.D=1e308"), {"species.D"}},
         Hostile{
             "FixedDtAboveTheLimit", {}, with(kRun, " --set time.dt=0.01"), {"time.dt", "--force"}},
+        Hostile{"DtFactorAboveTheLimit",
+                {},
+                with(kRun, " --set time.dt_factor=5"),
+                {"time.dt_factor", "--force"}},
+        Hostile{"DtAndDtFactorBoth",
+                {},
+                with(kRun, " --set time.dt=1e-5 --set time.dt_factor=1"),
+                {"time.dt_factor"}},
+        Hostile{"JitterAboveHalfASpacing",
+                {},
+                with(kRun, " --set particles.jitter=0.5"),
+                {"particles.jitter", "[0, 0.45]"}},
         // Options and paths.
         Hostile{"ThreadsZero", {}, with(kRun, " --threads 0"), {"--threads", "1 to 1024"}},
         Hostile{"ThreadsNegative", {}, with(kRun, " --threads -1"), {"--threads"}},

@@ -72,6 +72,7 @@ TEST(RunJson, EveryKey) {
   EXPECT_EQ(j["lost_particles"], 0);
   EXPECT_EQ(j["status"], "ok");
   EXPECT_EQ(j["message"], "");
+  EXPECT_TRUE(j["failure"].is_null());
   EXPECT_EQ(j["probe_interpolation"], "Shepard");
   EXPECT_DOUBLE_EQ(j["average_window"].get<double>(), 0.5);
   EXPECT_DOUBLE_EQ(j["phase_seconds"]["neighbours"].get<double>(), 3.0);
@@ -103,6 +104,7 @@ TEST(RunJson, NotSteadyAndFailed) {
   r.steady = false;
   r.status = "failed";
   r.message = "non-finite density at t = 0.1 s";
+  r.failure = {"density", 0.1, 42, 12.5, std::nan(""), 0.3};
   r.wall_s = 0.0;
   r.lost_particles = 7;
   r.stations.c_mean[1] = std::nan("");
@@ -113,6 +115,10 @@ TEST(RunJson, NotSteadyAndFailed) {
   EXPECT_EQ(j["steady"], false);
   EXPECT_EQ(j["status"], "failed");
   EXPECT_EQ(j["message"], "non-finite density at t = 0.1 s");
+  EXPECT_EQ(j["failure"]["kind"], "density");
+  EXPECT_EQ(j["failure"]["step"], 42);
+  EXPECT_DOUBLE_EQ(j["failure"]["x"].get<double>(), 12.5);
+  EXPECT_TRUE(j["failure"]["y"].is_null());
   EXPECT_DOUBLE_EQ(j["wall_seconds"].get<double>(), 13.0);  // the CLI's timing as fallback
   EXPECT_EQ(j["lost_particles"], 7);
   EXPECT_TRUE(j["stations"]["50"].is_null());  // JSON has no NaN

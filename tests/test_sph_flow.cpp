@@ -6,7 +6,10 @@
 #include <random>
 
 #include "adrsph/simulation.hpp"
+#include "boundaries/channel_scene.hpp"
 #include "integrator/sph_solver.hpp"
+#include "integrator/time_step.hpp"
+#include "particles/particle_store.hpp"
 #include "sph_test_cases.hpp"
 
 namespace adrsph {
@@ -182,6 +185,15 @@ TEST(Robustness, FailedStepLeavesEverythingAsItWas) {
   const double huge = 200.0 * dt;  // moves the inlet rows into the fluid, C far off its band
   ASSERT_FALSE(solver.step(huge));
   EXPECT_NE(solver.failure().find("concentration"), std::string::npos) << solver.failure();
+  // Where and what: the step that failed, and a particle inside the channel (its last good
+  // position) whose C left the band by more than the guard's margin.
+  const SphSolver::FailureSite& site = solver.failure_site();
+  EXPECT_EQ(site.kind, FailureKind::concentration);
+  EXPECT_EQ(site.step, twin.steps() + 1);
+  EXPECT_DOUBLE_EQ(site.t, twin.time() + huge);
+  EXPECT_GT(site.value, 0.5 * c.species.c_in);
+  EXPECT_LE(std::fabs(site.y), c.geometry.half_width);
+  EXPECT_NE(solver.failure().find("(x, y) = ("), std::string::npos) << solver.failure();
   EXPECT_EQ(solver.time(), twin.time());
   EXPECT_EQ(solver.steps(), twin.steps());
   const auto& l = solver.species_ledger();
@@ -209,17 +221,8 @@ TEST(Robustness, FailedStepLeavesEverythingAsItWas) {
 
 TEST(Robustness, JitteredLatticeStaysStableWithShifting) {
   Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  c.particles.jitter = 0.2;  // every fluid particle up to 0.2 dx off its site in x and y
   SphSolver solver(c);
-  auto& p = solver.particles();
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> jitter(-0.2 * c.particles.dx, 0.2 * c.particles.dx);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.kind[i] != kFluidByte) continue;
-    p.x[i] += jitter(rng);
-    p.y[i] = std::clamp(p.y[i] + jitter(rng), -c.geometry.half_width + 0.05,
-                        c.geometry.half_width - 0.05);
-  }
-  solver.rebuild();
   const double dt = solver.dt_limits().chosen;
   while (solver.time() < 0.1) ASSERT_TRUE(solver.step(dt)) << solver.failure();
   const double err = poiseuille_l2_error(solver, c);
@@ -244,8 +247,52 @@ TEST(Robustness, LostParticleStopsTheRunWithAMessage) {
   EXPECT_EQ(solver.fluid_count(), n_fluid - 1);
   EXPECT_FALSE(solver.step(solver.dt_limits().chosen));
   EXPECT_NE(solver.failure().find("left the channel"), std::string::npos) << solver.failure();
+  EXPECT_EQ(solver.failure_site().kind, FailureKind::lost_particles);
+  EXPECT_EQ(solver.failure_site().value, 1.0);
   const std::string advice = failure_advice(solver.failure_kind(), c, 0.0);
   EXPECT_NE(advice.find("time.cfl"), std::string::npos) << advice;
+}
+
+// particles.jitter moves the fluid particles only, by at most jitter dx in x and y, and the
+// same way every time (the stability map compares runs that differ in one key).
+TEST(Robustness, JitterMovesOnlyTheFluidWithinItsBound) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  ParticleStore a, b, again;  // the scene's start, before any sort: same order
+  ChannelScene(c).initialise(a);
+  c.particles.jitter = 0.3;
+  ChannelScene(c).initialise(b);
+  ChannelScene(c).initialise(again);
+  ASSERT_EQ(a.size(), b.size());
+  double largest = 0.0;
+  std::size_t moved = 0, fluid = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = std::max(std::fabs(b.x[i] - a.x[i]), std::fabs(b.y[i] - a.y[i]));
+    if (a.kind[i] != kFluidByte) {
+      EXPECT_EQ(d, 0.0) << "a boundary particle moved";
+      continue;
+    }
+    ++fluid;
+    largest = std::max(largest, d);
+    moved += d > 0.0;
+    EXPECT_EQ(b.x[i], again.x[i]);
+    EXPECT_EQ(b.y[i], again.y[i]);
+  }
+  EXPECT_LE(largest, 0.3 * c.particles.dx);
+  EXPECT_GT(largest, 0.25 * c.particles.dx);  // the offsets fill their range
+  EXPECT_EQ(moved, fluid);
+}
+
+// time.dt_factor fixes the step at a multiple of the case's own limit, without sub-cycling.
+TEST(Robustness, DtFactorIsAMultipleOfTheLimit) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  c.species.D = 1e4;  // the diffusion limit binds (9x below the acoustic) and is sub-cycled
+  const TimeStepLimits natural = time_step_limits(c);
+  ASSERT_GT(natural.species_substeps, 1);
+  c.time.dt_factor = 2.0;
+  const TimeStepLimits fixed = time_step_limits(c);
+  EXPECT_EQ(fixed.species_substeps, 1);
+  EXPECT_DOUBLE_EQ(fixed.chosen, 2.0 * natural.diffusion);
+  EXPECT_NE(fixed.binding.find("time.dt_factor"), std::string::npos) << fixed.binding;
 }
 
 }  // namespace

@@ -154,6 +154,33 @@ TEST(StudyPlan, CaseKeyAxesNameRunsByTheirLastComponent) {
   EXPECT_EQ(runs[1].pe_label, "100");
 }
 
+// `force` passes --force to a group's runs (the stability map's steps above the limit);
+// `report` picks the report tool. The shipped stress study expands with both.
+TEST(StudyPlan, ForceAndReport) {
+  const auto study = analysis::parse_study_text(
+      with_group("force = true\n\"time.dt_factor\" = [2.0, 6.0]\n[[group]]\nname = \"h\"\n"),
+      "s.toml");
+  EXPECT_EQ(study.report, "study");
+  const auto runs = analysis::expand_study(study);
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_TRUE(runs[0].force);
+  EXPECT_TRUE(runs[1].force);
+  EXPECT_FALSE(runs[2].force);
+  EXPECT_THAT(runs[1].sets, ElementsAre("time.dt_factor=6"));
+  EXPECT_THAT(study_error(with_group("force = \"yes\"\n")),
+              HasSubstr("key 'force': expected true or false"));
+  EXPECT_THAT(study_error("report = \"table\"\n" + with_group("")),
+              HasSubstr("key 'report': expected \"study\""));
+
+  const auto stress = analysis::parse_study(test::source_dir() / "cases" / "stress_study.toml");
+  EXPECT_EQ(stress.report, "stress");
+  const auto map = analysis::expand_study(stress);
+  EXPECT_EQ(map.size(), 49u);
+  EXPECT_TRUE(find_run(map, "dt-modern-dt_factor8").force);
+  EXPECT_FALSE(find_run(map, "jitter-modern-jitter0.4").force);
+  EXPECT_DOUBLE_EQ(find_run(map, "pe-conventional-pe0.1").D, 1e5);
+}
+
 TEST(StudyPlan, OnlyPatterns) {
   const auto p = analysis::split_patterns({"paper-*-pe1000-*,ale-*", "warm-modern-pe10-dx0.5"});
   EXPECT_THAT(p, ElementsAre("paper-*-pe1000-*", "ale-*", "warm-modern-pe10-dx0.5"));

@@ -30,6 +30,7 @@ struct Case {
     int inlet_layers = 7;   // `particles.inlet_layers`, inflow buffer depth in dx
     int outlet_layers = 4;  // `particles.outlet_layers`, outflow buffer depth in dx
     double skin = 0.05;     // `particles.skin`, neighbour-list skin as a fraction of 3h
+    double jitter = 0.0;    // `particles.jitter`, random start offsets of the fluid, fraction of dx
     // The skin when a prescribed-flow case does not set one. Its particles move exactly with
     // u(y), so nothing but the list limits their step, and at the default Courant number
     // (0.25) a 0.05 skin is used up every step: lists were rebuilt every step, 63% of the
@@ -69,6 +70,7 @@ struct Case {
     double viscous_number = 0.125;   // `time.viscous_number`, dt <= this * h^2 / nu
     double diffusion_number = 0.25;  // `time.diffusion_number`, dt <= this * h^2 / D
     double dt = 0.0;                 // `time.dt` [s], fixed step; 0 = from the limits
+    double dt_factor = 0.0;  // `time.dt_factor`, fixed step = this x the case's limit; 0 = off
     double check_interval = 0.05;    // `time.check_interval` [s], probes + guards + steady test
     bool stop_when_steady = true;    // `time.stop_when_steady`
     double steady_tol = 1e-3;        // `time.steady_tol`, max change of window-mean probes / c_in

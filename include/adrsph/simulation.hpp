@@ -88,6 +88,15 @@ struct TimeStepLimits {
 struct RunResult {
   std::string status = "ok";  // "ok" | "failed" | "interrupted" (checkpoint written)
   std::string message;        // why it failed, and what to change
+  // When status is "failed": which guard tripped ("non_finite", "speed", "density",
+  // "concentration", "lost_particles"), when, and where (the worst particle's last good
+  // position, NaN when unknown) with the value that tripped it (run.json "failure").
+  struct Failure {
+    std::string kind;
+    double t = 0.0;
+    long step = 0;
+    double x = 0.0, y = 0.0, value = 0.0;
+  } failure;
   double t_reached = 0.0;
   long steps = 0;
   double wall_s = 0.0;

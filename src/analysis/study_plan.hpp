@@ -47,6 +47,7 @@ struct StudyGroup {
   // comes first.
   std::vector<std::string> set;
   std::vector<StudyKey> keys;
+  bool force = false;  // `force = true`: runs get --force (settings known unstable: stress maps)
 };
 
 struct StudyFile {
@@ -56,6 +57,9 @@ struct StudyFile {
   std::optional<std::filesystem::path> runs_dir, report_dir;  // resolved likewise
   std::optional<int> threads;
   int reference_nx = 1600, reference_ny = 160;  // [reference]
+  // `report`: "study" (tools/study_report.py, the paper's tables and plots) or "stress"
+  // (tools/stress_report.py, the stability map).
+  std::string report = "study";
   std::vector<StudyGroup> groups;
 };
 
@@ -67,6 +71,7 @@ struct StudyRun {
   double pe = 0;                  // Peclet number of the run's case
   double D = 0;                   // its species.D
   std::string pe_label;           // "1000": names the reference directory reference/pe<label>
+  bool force = false;             // its group's `force`: adrsph run --force
 };
 
 // Reads and checks the study file (keys, types, names). Throws StudyError.

@@ -87,6 +87,7 @@ void expand_group(const StudyFile& s, const StudyGroup& g, std::vector<StudyRun>
     run.group = g.name;
     run.name = g.name;
     run.sets = g.set;
+    run.force = g.force;
     std::optional<std::size_t> pe_at;  // where species.D goes among the sets
     double pe = 0;
     for (std::size_t i = 0; i < g.keys.size(); ++i) {

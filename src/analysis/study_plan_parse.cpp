@@ -219,7 +219,12 @@ StudyGroup read_group(const toml::table& g, std::size_t index, const std::string
       group.set.push_back(l.key + "=" + toml_text(*l.node));
     }
   }
-  for (const Leaf& l : leaves_in_file_order(g, {"name", "set"})) {
+  if (const auto* force = g.get("force")) {
+    if (!force->is_boolean())
+      reader.fail("force", "expected true or false, got " + describe(*force));
+    group.force = force->as_boolean()->get();
+  }
+  for (const Leaf& l : leaves_in_file_order(g, {"name", "set", "force"})) {
     if (l.key == "scheme" || l.key == "flow")
       group.keys.push_back(reader.word_key(l));
     else if (l.key == "Pe" || l.key == "dx")
@@ -228,8 +233,8 @@ StudyGroup read_group(const toml::table& g, std::size_t index, const std::string
       group.keys.push_back(reader.case_key(l));
     else
       reader.fail(l.key,
-                  "unknown group key; expected name, set, scheme, flow, Pe, dx or a dotted case "
-                  "key in quotes (\"species.ale\")");
+                  "unknown group key; expected name, set, force, scheme, flow, Pe, dx or a dotted "
+                  "case key in quotes (\"species.ale\")");
     claim(l.key, l.key);
   }
   return group;
@@ -273,8 +278,9 @@ StudyFile parse_study_text(const std::string& text, const fs::path& file) {
     throw StudyError(name + ":" + std::to_string(b.line) + ":" + std::to_string(b.column), "", "",
                      "TOML syntax error: " + std::string(e.description()));
   }
-  reject_unknown(doc, {"name", "case", "runs_dir", "report_dir", "threads", "reference", "group"},
-                 name, "", "name, case, runs_dir, report_dir, threads, [reference], [[group]]");
+  reject_unknown(
+      doc, {"name", "case", "runs_dir", "report_dir", "report", "threads", "reference", "group"},
+      name, "", "name, case, runs_dir, report_dir, report, threads, [reference], [[group]]");
   StudyFile s;
   s.file = file;
   s.name = file.stem().string();
@@ -291,6 +297,14 @@ StudyFile parse_study_text(const std::string& text, const fs::path& file) {
   s.runs_dir = path_key(doc, "runs_dir", name, base);
   s.report_dir = path_key(doc, "report_dir", name, base);
   if (doc.get("threads")) s.threads = int_key(doc, "threads", 1, name, "", 1);
+  if (const auto* r = doc.get("report")) {
+    if (!r->is_string() || (r->as_string()->get() != "study" && r->as_string()->get() != "stress"))
+      throw StudyError(name, "", "report",
+                       "expected \"study\" (the paper's tables) or \"stress\" (the stability "
+                       "map), got " +
+                           describe(*r));
+    s.report = r->as_string()->get();
+  }
   if (const auto* r = doc.get("reference")) {
     if (!r->is_table())
       throw StudyError(name, "", "reference", "expected a table [reference], got " + describe(*r));

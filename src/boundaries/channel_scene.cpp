@@ -1,10 +1,15 @@
 #include "boundaries/channel_scene.hpp"
 
 #include <cmath>
+#include <random>
 #include <stdexcept>
 #include <string>
 
 namespace adrsph {
+
+namespace {
+constexpr std::uint64_t kJitterSeed = 20260101;  // particles.jitter: one fixed start
+}  // namespace
 
 ChannelScene::ChannelScene(const Case& c)
     : dx_(c.particles.dx),
@@ -14,6 +19,7 @@ ChannelScene::ChannelScene(const Case& c)
       rho0_(c.fluid.rho0),
       c_in_(c.species.c_in),
       c_init_(c.species.c_init),
+      jitter_(c.particles.jitter),
       wall_layers_(c.particles.wall_layers),
       inlet_layers_(c.particles.inlet_layers),
       outlet_layers_(c.particles.outlet_layers) {
@@ -45,6 +51,8 @@ void ChannelScene::initialise(ParticleStore& s) const {
   s.mass = rho0_ * dx_ * dx_;
   // Exact room, plus two inflow rows for the feed (re-sorts drop outflow particles as fast).
   s.reserve(initial_count() + 2 * row_y_.size());
+  std::mt19937_64 rng(kJitterSeed);
+  std::uniform_real_distribution<double> offset(-jitter_ * dx_, jitter_ * dx_);
   for_each_initial([&](double x, double y, Kind k) {
     switch (k) {
       case Kind::inlet:
@@ -52,6 +60,13 @@ void ChannelScene::initialise(ParticleStore& s) const {
         break;
       case Kind::wall:
         s.push_back(x, y, 0.0, 0.0, rho0_, 0.0, k);
+        break;
+      case Kind::fluid:
+        if (jitter_ > 0.0) {
+          x += offset(rng);
+          y += offset(rng);
+        }
+        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_, k);
         break;
       default:
         s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_, k);

@@ -27,7 +27,9 @@ class ChannelScene {
     return u_max_ * (1.0 - eta * eta);
   }
 
-  // Fill the store with the initial state: C = c_init, velocity = the analytic profile.
+  // Fill the store with the initial state: C = c_init, velocity = the analytic profile; fluid
+  // particles offset from their lattice sites by up to particles.jitter dx in x and y
+  // (uniform, fixed seed: the same start every time).
   void initialise(ParticleStore& s) const;
   // The initial particles of initialise(), in its order, without a store: emit(x, y, kind).
   template <class Emit>
@@ -63,7 +65,7 @@ class ChannelScene {
   double half_width() const { return half_width_; }
 
  private:
-  double dx_, length_, half_width_, u_max_, rho0_, c_in_, c_init_;
+  double dx_, length_, half_width_, u_max_, rho0_, c_in_, c_init_, jitter_;
   int wall_layers_, inlet_layers_, outlet_layers_;
   double wall_x0_, wall_x1_;
   std::vector<double> row_y_;       // inflow rows

@@ -145,6 +145,8 @@ std::vector<KeyDef> make_keys() {
       "particles.outlet_layers", [](Case & c) -> auto& { return c.particles.outlet_layers; }));
   k.push_back(number(
       "particles.skin", [](Case & c) -> auto& { return c.particles.skin; }));
+  k.push_back(number(
+      "particles.jitter", [](Case & c) -> auto& { return c.particles.jitter; }));
 
   k.push_back(number(
       "fluid.rho0", [](Case & c) -> auto& { return c.fluid.rho0; }));
@@ -189,6 +191,8 @@ std::vector<KeyDef> make_keys() {
       "time.diffusion_number", [](Case & c) -> auto& { return c.time.diffusion_number; }));
   k.push_back(number(
       "time.dt", [](Case & c) -> auto& { return c.time.dt; }));
+  k.push_back(number(
+      "time.dt_factor", [](Case & c) -> auto& { return c.time.dt_factor; }));
   k.push_back(number(
       "time.check_interval", [](Case & c) -> auto& { return c.time.check_interval; }));
   k.push_back(boolean(

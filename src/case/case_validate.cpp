@@ -92,6 +92,8 @@ void check_geometry(Checker& k, const Case& c) {
   k.layers("particles.inlet_layers", c.particles.inlet_layers, 4);
   k.layers("particles.outlet_layers", c.particles.outlet_layers, 3);
   k.range("particles.skin", c.particles.skin, 0.0, false, 1.0, false);
+  // Below half a spacing no particle leaves the channel or passes its neighbour's site.
+  k.range("particles.jitter", c.particles.jitter, 0.0, false, 0.45, false);
 }
 
 void check_fluid_species(Checker& k, const Case& c) {
@@ -138,6 +140,9 @@ void check_time_output(Checker& k, const Case& c) {
   k.range("time.viscous_number", t.viscous_number, 0.0, true, 0.25, false);
   k.range("time.diffusion_number", t.diffusion_number, 0.0, true, 0.25, false);
   k.non_negative("time.dt", t.dt);
+  k.range("time.dt_factor", t.dt_factor, 0.0, false, 100.0, false);
+  k.require(!(t.dt > 0.0 && t.dt_factor > 0.0), "time.dt_factor",
+            "expected 0 when time.dt is set (both fix the step), got " + num(t.dt_factor));
   k.positive("time.check_interval", t.check_interval);
   k.positive("time.steady_tol", t.steady_tol);
   k.non_negative("time.steady_window", t.steady_window);

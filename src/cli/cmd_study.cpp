@@ -83,8 +83,9 @@ bool lock_runs_dir(const fs::path& runs_dir) {
   return fd >= 0 && ::flock(fd, LOCK_EX | LOCK_NB) == 0;
 }
 
-void write_report(const fs::path& runs_dir, const fs::path& report_dir) {
-  const fs::path script = tools_dir() / "study_report.py";
+void write_report(const std::string& kind, const fs::path& runs_dir, const fs::path& report_dir) {
+  const std::string name = kind + "_report.py";
+  const fs::path script = tools_dir() / name;
   if (!fs::exists(script)) {
     std::printf("report: %s not found; no report\n", script.c_str());
     return;
@@ -104,7 +105,7 @@ void write_report(const fs::path& runs_dir, const fs::path& report_dir) {
     std::printf("report: %s\n", e.what());
   }
   if (code != 0)
-    std::printf("report: study_report.py failed (exit %d), see %s\n", code, log.c_str());
+    std::printf("report: %s failed (exit %d), see %s\n", name.c_str(), code, log.c_str());
   std::fflush(stdout);
 }
 
@@ -220,7 +221,7 @@ int run_study_command(const StudyOptions& o) {
               setup.threads_per_run, runs_dir.c_str());
   std::fflush(stdout);
   const int code = run_study(setup);
-  write_report(runs_dir, report_dir);
+  write_report(study.report, runs_dir, report_dir);
   return code;
 }
 
@@ -242,7 +243,11 @@ Command register_study(CLI::App& app) {
       "study",
       "Run a study: a matrix of runs from one study file (groups x axes of scheme, flow, Pe, "
       "dx and case keys), the reference of each Pe, compare per run, and the report "
-      "(tools/study_report.py). Format: cases/README.md");
+      "(tools/study_report.py, or tools/stress_report.py for a study file with report = "
+      "\"stress\"). Format: cases/README.md");
+  // `adrsph stress cases/stress_study.toml` reads as what it does; the study file says which
+  // report it gets.
+  sub->alias("stress");
   sub->footer(
       "Each run is `adrsph run` in RUNS_DIR/<name>, its output in RUNS_DIR/<name>.log; the\n"
       "references go to RUNS_DIR/reference/pe<Pe>; RUNS_DIR/study.json lists every run and its\n"

@@ -58,21 +58,24 @@ std::optional<PreflightProblem> check_memory(const Case& c, double available) {
 // A fixed time.dt above the largest step the engine's own limits allow at the largest
 // allowed time.cfl (1), time.viscous_number and time.diffusion_number (0.25): known unstable.
 std::optional<PreflightProblem> check_fixed_dt(const Case& c) {
-  if (!(c.time.dt > 0.0)) return std::nullopt;
+  if (!(c.time.dt > 0.0) && !(c.time.dt_factor > 0.0)) return std::nullopt;
+  const double dt = time_step_limits(c).chosen;
+  const char* key = c.time.dt > 0.0 ? "time.dt" : "time.dt_factor";
   Case edge = c;
   edge.time.dt = 0.0;
+  edge.time.dt_factor = 0.0;
   edge.time.species_subcycling = false;  // a fixed dt is never sub-cycled
   edge.time.cfl = 1.0;
   edge.time.viscous_number = 0.25;
   edge.time.diffusion_number = 0.25;
   const TimeStepLimits l = time_step_limits(edge);
-  if (c.time.dt <= l.chosen * (1.0 + 1e-12)) return std::nullopt;
+  if (dt <= l.chosen * (1.0 + 1e-12)) return std::nullopt;
   return PreflightProblem{
-      "time.dt",
+      key,
       "expected a fixed step of at most " + num(l.chosen) + " s, the " + l.binding +
           " limit at its largest allowed number (time.cfl = 1, time.viscous_number = "
           "time.diffusion_number = 0.25), got " +
-          num(c.time.dt) + " s: the run would blow up (use --force to run it anyway)",
+          num(dt) + " s: the run would blow up (use --force to run it anyway)",
       true};
 }
 

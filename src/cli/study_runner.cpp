@@ -236,6 +236,7 @@ void StudyRunner::start(std::size_t i) {
     argv.insert(argv.end(), {"--out", f.dir.string()});
   }
   argv.insert(argv.end(), {"--threads", std::to_string(s_.threads_per_run)});
+  if (R(i).force) argv.push_back("--force");
   Active a{i, nullptr, Clock::now(), Clock::now(), 0};
   try {
     if (!resume) write_run_args(f.args, argv, {s_.case_file.string(), R(i).sets});

@@ -290,6 +290,8 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
     result.status = "failed";
     result.message = solver.failure() + " " +
                      failure_advice(solver.failure_kind(), c, solver.dt_limits().acoustic);
+    const SphSolver::FailureSite& f = solver.failure_site();
+    result.failure = {failure_name(f.kind), f.t, f.step, f.x, f.y, f.value};
   }
   // Final probes: instantaneous, or the mean over the final window.
   if (c.time.average_window > 0 && !window.empty() && ok) {

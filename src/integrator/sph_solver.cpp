@@ -272,9 +272,13 @@ bool SphSolver::report_lost() {
   std::ostringstream m;
   m << (lost_ - lost_reported_) << " fluid particle(s) left the channel through a wall or "
     << "the inlet by t = " << t_ << " s (step " << steps_ << ").";
-  lost_reported_ = lost_;
   failure_ = m.str();
-  failure_kind_ = FailureKind::lost_particles;
+  failure_site_ = {};
+  failure_site_.kind = FailureKind::lost_particles;
+  failure_site_.t = t_;
+  failure_site_.step = steps_;
+  failure_site_.value = static_cast<double>(lost_ - lost_reported_);
+  lost_reported_ = lost_;
   return false;
 }
 
@@ -304,34 +308,80 @@ bool SphSolver::check_state(double dt) {
     if (finite) c_dev = std::max(c_dev, std::max(s.c[i] - c_max, -s.c[i]));
   }
   const double vmax = std::sqrt(vmax2);
+  FailureKind kind = FailureKind::none;
+  if (bad > 0)
+    kind = FailureKind::non_finite;
+  else if (case_.flow == Flow::wcsph && vmax > 0.5 * case_.c0())
+    kind = FailureKind::speed;
+  else if (case_.flow == Flow::wcsph && drho_max > 0.2)
+    kind = FailureKind::density;
+  else if (c_dev > 0.5 * c_max)
+    kind = FailureKind::concentration;
+  if (kind == FailureKind::none) {
+    const double tmax = std::sqrt(tmax2);
+    moved_abs_ += tmax * dt;
+    return true;
+  }
+  // A guard tripped (rare): find the particle that failed worst, serially.
+  std::size_t worst = 0;
+  double worst_value = -1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] == kWallByte) continue;
+    const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];
+    double value = 0.0;
+    switch (kind) {
+      case FailureKind::non_finite:
+        value = (std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(v2) &&
+                 std::isfinite(s.rho[i]) && std::isfinite(s.c[i]))
+                    ? 0.0
+                    : 1.0;
+        break;
+      case FailureKind::speed:
+        value = std::sqrt(v2);
+        break;
+      case FailureKind::density:
+        value = std::fabs(s.rho[i] / rho0 - 1.0);
+        break;
+      default:
+        value = std::max(s.c[i] - c_max, -s.c[i]);
+        break;
+    }
+    if (value > worst_value) {
+      worst_value = value;
+      worst = i;
+    }
+  }
+  const char* kind_of_worst = s.kind[worst] == kFluidByte   ? "fluid"
+                              : s.kind[worst] == kInletByte ? "inlet"
+                                                            : "outlet";
+  // Restore the last good state (start of this step; walls were not advanced).
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.kind[i] != kWallByte) s.restore_start(i);
+  density_predicted_ = false;
+  failure_site_ = {kind, t_ + dt, steps_ + 1, s.x[worst], s.y[worst], worst_value};
   std::ostringstream m;
-  if (bad > 0) {
-    m << bad << " particle(s) with non-finite state (NaN or inf) at t = " << t_ + dt << " s, step "
-      << steps_ + 1 << ", dt = " << dt << " s.";
-  } else if (case_.flow == Flow::wcsph && vmax > 0.5 * case_.c0()) {
-    m << "particle speed " << vmax << " mm/s exceeds 0.5 c0 = " << 0.5 * case_.c0()
-      << " mm/s at t = " << t_ + dt << " s, step " << steps_ + 1
-      << ": the flow blew up, weak compressibility no longer holds.";
-  } else if (case_.flow == Flow::wcsph && drho_max > 0.2) {
-    m << "density deviates by " << 100 * drho_max << "% from rho0 at t = " << t_ + dt << " s, step "
-      << steps_ + 1 << ": the flow blew up.";
-  } else if (c_dev > 0.5 * c_max) {
-    m << "concentration left the physical band [0, " << c_max << "] by " << c_dev
-      << " mol/m^3 at t = " << t_ + dt << " s, step " << steps_ + 1
-      << ": the species step is unstable.";
+  m << "at t = " << t_ + dt << " s, step " << steps_ + 1 << ", dt = " << dt << " s: ";
+  switch (kind) {
+    case FailureKind::non_finite:
+      failure_site_.value = bad;
+      m << bad << " particle(s) with non-finite state (NaN or inf)";
+      break;
+    case FailureKind::speed:
+      m << "particle speed " << vmax << " mm/s exceeds 0.5 c0 = " << 0.5 * case_.c0()
+        << " mm/s (the flow blew up, weak compressibility no longer holds)";
+      break;
+    case FailureKind::density:
+      m << "density deviates by " << 100 * drho_max << "% from rho0 (the flow blew up)";
+      break;
+    default:
+      m << "concentration left the physical band [0, " << c_max << "] by " << c_dev
+        << " mol/m^3 (the species step is unstable)";
+      break;
   }
-  if (!m.str().empty()) {
-    failure_ = m.str();
-    failure_kind_ = FailureKind::unstable_step;
-    // Restore the last good state (start of this step; walls were not advanced).
-    for (std::size_t i = 0; i < n; ++i)
-      if (s.kind[i] != kWallByte) s.restore_start(i);
-    density_predicted_ = false;
-    return false;
-  }
-  const double tmax = std::sqrt(tmax2);
-  moved_abs_ += tmax * dt;
-  return true;
+  m << "; worst at the " << kind_of_worst << " particle last at (x, y) = (" << s.x[worst] << ", "
+    << s.y[worst] << ") mm.";
+  failure_ = m.str();
+  return false;
 }
 
 bool SphSolver::step(double dt) {

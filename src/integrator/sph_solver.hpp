@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,19 @@ class SphSolver {
   // What happened at the last failed step (no advice: failure_advice() in src/case says what
   // to change in the case), and its kind.
   const std::string& failure() const { return failure_; }
-  FailureKind failure_kind() const { return failure_kind_; }
+  FailureKind failure_kind() const { return failure_site_.kind; }
+  // Where: the time and step of the failed step, the particle that failed worst (its last
+  // good position; NaN for lost particles, which are removed) and the value that tripped
+  // the guard (speed, |rho / rho0 - 1|, distance of C outside its band, particles lost).
+  struct FailureSite {
+    FailureKind kind = FailureKind::none;
+    double t = 0.0;
+    long step = 0;
+    double x = std::numeric_limits<double>::quiet_NaN();
+    double y = std::numeric_limits<double>::quiet_NaN();
+    double value = 0.0;
+  };
+  const FailureSite& failure_site() const { return failure_site_; }
   long lost_particles() const { return lost_; }
   // Particles that crossed the inlet and outlet planes since the start.
   const ChannelScene::Crossings& boundary_crossings() const { return crossings_; }
@@ -156,7 +169,7 @@ class SphSolver {
   bool track_balance_ = false;
   double particle_steps_ = 0.0;
   std::string failure_;
-  FailureKind failure_kind_ = FailureKind::none;
+  FailureSite failure_site_;
   std::vector<std::uint32_t> order_, outside_;
   std::vector<char> keep_;
 };

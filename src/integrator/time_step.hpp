@@ -3,6 +3,7 @@
 //   advective dt <= cfl h / u_max              (prescribed flow: no sound waves)
 //   viscous   dt <= viscous_number h^2 / nu    (WCSPH flow)
 //   diffusion dt <= diffusion_number h^2 / D
+// or a fixed step: time.dt, or time.dt_factor times the smallest of these.
 #pragma once
 
 #include <algorithm>
@@ -42,7 +43,8 @@ inline TimeStepLimits time_step_limits(const Case& c) {
   l.chosen = best;
   // Split the species diffusion off when it alone holds the step down: the flow (or the
   // advection) keeps its own step and diffusion takes one multi-stage RKL2 step within it.
-  if (c.time.species_subcycling && c.time.dt == 0 && l.binding == "diffusion") {
+  const bool fixed = c.time.dt > 0 || c.time.dt_factor > 0;
+  if (c.time.species_subcycling && !fixed && l.binding == "diffusion") {
     double flow = std::numeric_limits<double>::infinity();
     for (double v : {l.acoustic, l.advective, l.viscous})
       if (v > 0) flow = std::min(flow, v);
@@ -60,6 +62,11 @@ inline TimeStepLimits time_step_limits(const Case& c) {
   if (c.time.dt > 0) {
     l.chosen = c.time.dt;
     l.binding = "fixed (time.dt)";
+  } else if (c.time.dt_factor > 0) {
+    // A fixed multiple of the case's own limit, without sub-cycling: the stability map
+    // (docs/robustness.md) steps through it.
+    l.chosen *= c.time.dt_factor;
+    l.binding = "fixed (time.dt_factor x " + l.binding + ")";
   }
   return l;
 }

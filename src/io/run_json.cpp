@@ -59,6 +59,11 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["lost_particles"] = r.lost_particles;
   j["status"] = r.status;
   j["message"] = r.message;
+  j["failure"] = r.status == "failed"
+                     ? Json{{"kind", r.failure.kind},   {"t", number(r.failure.t)},
+                            {"step", r.failure.step},   {"x", number(r.failure.x)},
+                            {"y", number(r.failure.y)}, {"value", number(r.failure.value)}}
+                     : Json(nullptr);
   j["probe_interpolation"] = r.probe_interpolation;
   j["average_window"] = r.average_window;
   j["warm_start"] = r.warm_started ? Json{{"flow", "prescribed"},
