@@ -220,5 +220,79 @@ TEST(CliCheckpoint, SigtermThenRestart) {
   EXPECT_EQ(j["field_frames"].get<int>(), 2);
 }
 
+// A run killed without warning (SIGKILL) at a random moment, possibly while it writes a
+// checkpoint, continues from its last complete checkpoint: checkpoints are written to a
+// .tmp file and renamed into place, so the one on disk is always whole.
+TEST(CliCheckpoint, SigkilledRunRestartsFromItsLastCheckpoint) {
+  for (const char* delay : {"0", "0.13", "0.29"}) {
+    SCOPED_TRACE(std::string("killed ") + delay + " s after its first checkpoint");
+    test::TempDir dir;
+    const std::string run = std::string(ADRSPH_BINARY) + " run " + lfr() +
+                            " --set particles.dx=0.5 --set time.t_end=5 --set "
+                            "time.stop_when_steady=false --set output.field_times=[] --set "
+                            "output.checkpoint_minutes=0.001 --out out --threads 1 --quiet";
+    const std::string script =
+        run +
+        " & pid=$!; for i in $(seq 400); do [ -f out.partial/checkpoint.h5 ] && break; "
+        "sleep 0.02; done; sleep " +
+        delay + "; kill -KILL $pid; wait $pid; echo exit=$?";
+    const auto r = test::run_shell(script, dir.path());
+    EXPECT_THAT(r.out, HasSubstr("exit=137")) << r.err;
+    const fs::path cp = StagedDir::checkpoint_path(dir / "out");
+    ASSERT_TRUE(fs::exists(cp));
+    const long steps = read_checkpoint(cp).state.solver.steps;
+    const auto cont = test::run_adrsph(
+        "run --restart out --quiet --set time.max_steps=" + std::to_string(steps + 20), dir.path());
+    ASSERT_EQ(cont.exit_code, 0) << cont.err;
+    EXPECT_FALSE(fs::exists(dir / "out.partial"));
+    EXPECT_FALSE(fs::exists(dir / "out" / "checkpoint.h5.tmp"));
+    const auto j = nlohmann::json::parse(test::read_file(dir / "out" / "run.json"));
+    EXPECT_EQ(j["status"], "ok");
+    EXPECT_EQ(j["steps"].get<long>(), steps + 20);
+  }
+}
+
+// A damaged checkpoint (cut short, or bytes changed inside: HDF5's checksums on every array
+// and on the metadata) is refused with a message naming it, and left as it was.
+TEST(CliCheckpoint, DamagedCheckpointIsRefused) {
+  test::TempDir dir;
+  const std::string run = std::string(ADRSPH_BINARY) + " run " + lfr() +
+                          " --set particles.dx=0.5 --set time.t_end=5 --set "
+                          "time.stop_when_steady=false --set output.field_times=[] --out out "
+                          "--threads 1 --quiet";
+  const auto r = test::run_shell(run +
+                                     " & pid=$!; for i in $(seq 200); do [ -f "
+                                     "out.partial/case.toml ] && break; sleep 0.05; done; "
+                                     "sleep 0.5; kill -TERM $pid; wait $pid; echo exit=$?",
+                                 dir.path());
+  ASSERT_THAT(r.out, HasSubstr("exit=4")) << r.err;
+  const fs::path cp = StagedDir::checkpoint_path(dir / "out");
+  const std::string whole = test::read_file(cp);
+  ASSERT_GT(whole.size(), 10000u);
+  struct Damage {
+    const char* what;
+    std::string bytes;
+  };
+  std::string flipped = whole;
+  for (std::size_t i = whole.size() / 2; i < whole.size() / 2 + 64; ++i)
+    flipped[i] = static_cast<char>(~flipped[i]);
+  for (const Damage& d : {Damage{"cut in half", whole.substr(0, whole.size() / 2)},
+                          Damage{"64 bytes inverted in the middle", flipped}}) {
+    SCOPED_TRACE(d.what);
+    test::write_file(cp, d.bytes);
+    const auto again = test::run_adrsph("run --restart out --quiet", dir.path());
+    EXPECT_NE(again.exit_code, 0);
+    EXPECT_THAT(again.err, HasSubstr("checkpoint.h5"));
+    EXPECT_THAT(again.err, HasSubstr("damaged or incomplete"));
+    EXPECT_TRUE(test::read_file(cp) == d.bytes);  // left as it was, for the user to look at
+    EXPECT_FALSE(fs::exists(dir / "out"));
+  }
+  test::write_file(cp, whole);  // the undamaged file still continues
+  const auto cont = test::run_adrsph("run --restart out --quiet --set time.max_steps=" +
+                                         std::to_string(read_checkpoint(cp).state.solver.steps + 5),
+                                     dir.path());
+  EXPECT_EQ(cont.exit_code, 0) << cont.err;
+}
+
 }  // namespace
 }  // namespace adrsph

@@ -318,6 +318,11 @@ int run(const RunOptions& o) {
     info.files.push_back("case.toml");
     std::error_code ec;
     fs::remove(checkpoint, ec);  // the run is complete: nothing to continue
+    // A checkpoint half-written when an earlier process of this run was killed (SIGKILL
+    // during write_checkpoint leaves its .tmp; the checkpoint itself is replaced by a rename).
+    fs::path partial_write = checkpoint;
+    partial_write += ".tmp";
+    fs::remove(partial_write, ec);
     stage->commit();
   } catch (const std::exception& e) {
     error(std::string("cannot write the outputs: ") + e.what());

@@ -25,9 +25,11 @@ h5::Handle open_group(hid_t parent, const char* name, const std::string& file) {
                    std::string("open group /") + name);
 }
 
+// Every array of a checkpoint is checksummed (Fletcher-32); its metadata (groups,
+// attributes) too, by the file format of write_checkpoint (object header checksums).
 template <class T>
 void put(hid_t g, const char* name, const std::vector<T>& v, const std::string& file) {
-  h5::write_dataset<T>(g, name, std::span<const T>(v), file);
+  h5::write_dataset<T>(g, name, std::span<const T>(v), file, /*checksum=*/true);
 }
 
 template <class T>
@@ -232,7 +234,12 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointFile& c
   const std::string file = tmp.string();
   h5::silence_errors();
   {
-    const auto f = h5::check(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+    // The 1.10 file format (superblock v3, object header v2) checksums all metadata, so a
+    // damaged attribute or group is found on reading too, not only a damaged array.
+    const auto access = h5::check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, file, "file properties");
+    h5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST), file,
+              "file format");
+    const auto f = h5::check(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
                              H5Fclose, file, "create the file");
     {
       const auto g = create_group(f.get(), "case", file);
@@ -253,8 +260,9 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointFile& c
     throw std::runtime_error(path.string() + ": cannot replace the checkpoint: " + ec.message());
 }
 
-CheckpointFile read_checkpoint(const std::filesystem::path& path) {
-  const std::string file = path.string();
+namespace {
+
+CheckpointFile read_checkpoint_file(const std::string& file) {
   h5::silence_errors();
   const auto f = h5::check(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, file,
                            "open the checkpoint");
@@ -272,6 +280,20 @@ CheckpointFile read_checkpoint(const std::filesystem::path& path) {
   cp.state.solver = read_solver(f.get(), file);
   read_run(f.get(), cp.state, file);
   return cp;
+}
+
+}  // namespace
+
+CheckpointFile read_checkpoint(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  try {
+    return read_checkpoint_file(file);
+  } catch (const std::exception& e) {
+    // A checksum mismatch, a truncated file or a missing part: never load it.
+    throw std::runtime_error(std::string(e.what()) +
+                             ": the checkpoint is damaged or incomplete and was not loaded; "
+                             "start the run again without --restart");
+  }
 }
 
 }  // namespace adrsph

@@ -2,6 +2,7 @@
 // shapes the field files and the checkpoints need, with errors that name the file.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -39,13 +40,22 @@ hid_t file_type() {
     return H5T_STD_U8LE;
 }
 
+// With `checksum`, the data is stored in chunks with HDF5's Fletcher-32 filter: a read of a
+// damaged chunk fails (H5Dread) instead of returning wrong numbers.
 template <class T>
 void write_dataset(hid_t group, const std::string& name, std::span<const T> data,
-                   const std::string& file) {
+                   const std::string& file, bool checksum = false) {
   const hsize_t n = data.size();
   const auto space = check(H5Screate_simple(1, &n, nullptr), H5Sclose, file, "create space");
+  const auto props =
+      check(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, file, "create dataset properties");
+  if (checksum && n > 0) {
+    const hsize_t chunk = std::min<hsize_t>(n, hsize_t{1} << 16);
+    check(H5Pset_chunk(props.get(), 1, &chunk), file, "chunk dataset " + name);
+    check(H5Pset_fletcher32(props.get()), file, "checksum dataset " + name);
+  }
   const auto set = check(H5Dcreate2(group, name.c_str(), file_type<T>(), space.get(), H5P_DEFAULT,
-                                    H5P_DEFAULT, H5P_DEFAULT),
+                                    props.get(), H5P_DEFAULT),
                          H5Dclose, file, "create dataset " + name);
   if (n > 0)
     check(H5Dwrite(set.get(), mem_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), file,
