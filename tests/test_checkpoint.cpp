@@ -233,7 +233,7 @@ TEST(CliCheckpoint, SigkilledRunRestartsFromItsLastCheckpoint) {
                             "output.checkpoint_minutes=0.001 --out out --threads 1 --quiet";
     const std::string script =
         run +
-        " & pid=$!; for i in $(seq 400); do [ -f out.partial/checkpoint.h5 ] && break; "
+        " & pid=$!; for i in $(seq 3000); do [ -f out.partial/checkpoint.h5 ] && break; "
         "sleep 0.02; done; sleep " +
         delay + "; kill -KILL $pid; wait $pid; echo exit=$?";
     const auto r = test::run_shell(script, dir.path());

@@ -1,0 +1,130 @@
+// The guards of SphSolver::step: after every step, the state is checked (non-finite values,
+// speed, density, concentration band; docs/robustness.md), and a failed step is undone and
+// described (what, when, where). Particles lost at a re-sort are reported here too.
+#include <cmath>
+#include <sstream>
+
+#include "integrator/sph_solver.hpp"
+
+namespace adrsph {
+
+// Particles a re-sort found outside the channel. The step that moved them is kept (they are
+// removed already): the failure says so and stops the run there.
+bool SphSolver::report_lost() {
+  if (lost_ <= lost_reported_) return true;
+  std::ostringstream m;
+  m << (lost_ - lost_reported_) << " fluid particle(s) left the channel through a wall or "
+    << "the inlet by t = " << t_ << " s (step " << steps_ << ").";
+  failure_ = m.str();
+  failure_site_ = {};
+  failure_site_.kind = FailureKind::lost_particles;
+  failure_site_.t = t_;
+  failure_site_.step = steps_;
+  failure_site_.value = static_cast<double>(lost_ - lost_reported_);
+  lost_reported_ = lost_;
+  return false;
+}
+
+bool SphSolver::check_state(double dt) {
+  ScopedPhase timer(timers_, Phase::integration);
+  ParticleStore& s = store_;
+  const std::size_t n = s.size();
+  int bad = 0;
+  double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0, c_dev = 0.0;
+  // Diffusion and reaction keep C within [0, c_max] (maximum principle); the dilatation term
+  // may move it slightly. A species step beyond its stability limit leaves this band fast.
+  const double c_max = std::max(case_.species.c_in, case_.species.c_init);
+  const double rho0 = case_.fluid.rho0;
+#pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max, c_dev) reduction(+ : bad)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] == kWallByte) continue;
+    const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
+    const bool shifts = s.kind[i] == kFluidByte;  // sx, sy are only defined for fluid particles
+    const double tx = s.vx[i] + (shifts ? s.sx[i] : 0.0), ty = s.vy[i] + (shifts ? s.sy[i] : 0.0);
+    const double t2 = tx * tx + ty * ty;  // transport velocity (how far particles move)
+    const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&
+                        std::isfinite(s.rho[i]) && std::isfinite(s.c[i]);
+    bad += finite ? 0 : 1;
+    vmax2 = std::max(vmax2, finite ? v2 : 0.0);
+    tmax2 = std::max(tmax2, finite ? t2 : 0.0);
+    drho_max = std::max(drho_max, finite ? std::fabs(s.rho[i] / rho0 - 1.0) : 0.0);
+    if (finite) c_dev = std::max(c_dev, std::max(s.c[i] - c_max, -s.c[i]));
+  }
+  const double vmax = std::sqrt(vmax2);
+  FailureKind kind = FailureKind::none;
+  if (bad > 0)
+    kind = FailureKind::non_finite;
+  else if (case_.flow == Flow::wcsph && vmax > 0.5 * case_.c0())
+    kind = FailureKind::speed;
+  else if (case_.flow == Flow::wcsph && drho_max > 0.2)
+    kind = FailureKind::density;
+  else if (c_dev > 0.5 * c_max)
+    kind = FailureKind::concentration;
+  if (kind == FailureKind::none) {
+    const double tmax = std::sqrt(tmax2);
+    moved_abs_ += tmax * dt;
+    return true;
+  }
+  // A guard tripped (rare): find the particle that failed worst, serially.
+  std::size_t worst = 0;
+  double worst_value = -1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] == kWallByte) continue;
+    const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];
+    double value = 0.0;
+    switch (kind) {
+      case FailureKind::non_finite:
+        value = (std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(v2) &&
+                 std::isfinite(s.rho[i]) && std::isfinite(s.c[i]))
+                    ? 0.0
+                    : 1.0;
+        break;
+      case FailureKind::speed:
+        value = std::sqrt(v2);
+        break;
+      case FailureKind::density:
+        value = std::fabs(s.rho[i] / rho0 - 1.0);
+        break;
+      default:
+        value = std::max(s.c[i] - c_max, -s.c[i]);
+        break;
+    }
+    if (value > worst_value) {
+      worst_value = value;
+      worst = i;
+    }
+  }
+  const char* kind_of_worst = s.kind[worst] == kFluidByte   ? "fluid"
+                              : s.kind[worst] == kInletByte ? "inlet"
+                                                            : "outlet";
+  // Restore the last good state (start of this step; walls were not advanced).
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.kind[i] != kWallByte) s.restore_start(i);
+  density_predicted_ = false;
+  failure_site_ = {kind, t_ + dt, steps_ + 1, s.x[worst], s.y[worst], worst_value};
+  std::ostringstream m;
+  m << "at t = " << t_ + dt << " s, step " << steps_ + 1 << ", dt = " << dt << " s: ";
+  switch (kind) {
+    case FailureKind::non_finite:
+      failure_site_.value = bad;
+      m << bad << " particle(s) with non-finite state (NaN or inf)";
+      break;
+    case FailureKind::speed:
+      m << "particle speed " << vmax << " mm/s exceeds 0.5 c0 = " << 0.5 * case_.c0()
+        << " mm/s (the flow blew up, weak compressibility no longer holds)";
+      break;
+    case FailureKind::density:
+      m << "density deviates by " << 100 * drho_max << "% from rho0 (the flow blew up)";
+      break;
+    default:
+      m << "concentration left the physical band [0, " << c_max << "] by " << c_dev
+        << " mol/m^3 (the species step is unstable)";
+      break;
+  }
+  m << "; worst at the " << kind_of_worst << " particle last at (x, y) = (" << s.x[worst] << ", "
+    << s.y[worst] << ") mm.";
+  failure_ = m.str();
+  return false;
+}
+
+}  // namespace adrsph
