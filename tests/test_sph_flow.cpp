@@ -282,6 +282,24 @@ TEST(Robustness, JitterMovesOnlyTheFluidWithinItsBound) {
   EXPECT_EQ(moved, fluid);
 }
 
+// The conventional scheme's summation density sees a disordered start at once: a lattice
+// jittered by 0.3 dx is more than 20% off rho0 somewhere, and the density guard stops the
+// first step, with advice about the start rather than the step.
+TEST(Robustness, DisorderedStartFailsTheFirstConventionalStep) {
+  Case c = testing::short_channel(Scheme::conventional, Flow::wcsph, 20.0);
+  c.particles.jitter = 0.3;
+  SphSolver solver(c);
+  ASSERT_FALSE(solver.step(solver.dt_limits().chosen));
+  const SphSolver::FailureSite& site = solver.failure_site();
+  EXPECT_EQ(site.kind, FailureKind::density);
+  EXPECT_EQ(site.step, 1);
+  EXPECT_GT(site.value, 0.2);
+  EXPECT_NE(solver.failure().find("first step"), std::string::npos) << solver.failure();
+  const std::string advice = failure_advice(site.kind, c, 0.0, site.step == 1);
+  EXPECT_NE(advice.find("particles.jitter"), std::string::npos) << advice;
+  EXPECT_EQ(failure_advice(site.kind, c, 0.0, false).find("particles.jitter"), std::string::npos);
+}
+
 // time.dt_factor fixes the step at a multiple of the case's own limit, without sub-cycling.
 TEST(Robustness, DtFactorIsAMultipleOfTheLimit) {
   Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);

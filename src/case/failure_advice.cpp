@@ -33,8 +33,14 @@ void fixed_step_advice(std::ostringstream& m, const Case& c, double acoustic_lim
 
 }  // namespace
 
-std::string failure_advice(FailureKind kind, const Case& c, double acoustic_limit) {
+std::string failure_advice(FailureKind kind, const Case& c, double acoustic_limit,
+                           bool first_step) {
   std::ostringstream m;
+  if (first_step && kind == FailureKind::density && c.particles.jitter > 0) {
+    m << "The disordered start is the cause: lower particles.jitter (now " << c.particles.jitter
+      << "), or start from the lattice.";
+    return m.str();
+  }
   switch (kind) {
     case FailureKind::none:
       break;

@@ -22,7 +22,9 @@ enum class FailureKind {
 const char* failure_name(FailureKind kind);
 
 // The advice for a failure of `kind` in case `c`; `acoustic_limit` is the stable acoustic
-// step of the case [s] (0 without one).
-std::string failure_advice(FailureKind kind, const Case& c, double acoustic_limit);
+// step of the case [s] (0 without one); `first_step`: it failed at the first step, so the
+// start itself is the cause, not the step size.
+std::string failure_advice(FailureKind kind, const Case& c, double acoustic_limit,
+                           bool first_step = false);
 
 }  // namespace adrsph

@@ -288,9 +288,9 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
   }
   if (!ok) {
     result.status = "failed";
-    result.message = solver.failure() + " " +
-                     failure_advice(solver.failure_kind(), c, solver.dt_limits().acoustic);
     const SphSolver::FailureSite& f = solver.failure_site();
+    result.message = solver.failure() + " " +
+                     failure_advice(f.kind, c, solver.dt_limits().acoustic, f.step == 1);
     result.failure = {failure_name(f.kind), f.t, f.step, f.x, f.y, f.value};
   }
   // Final probes: instantaneous, or the mean over the final window.

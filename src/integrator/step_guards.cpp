@@ -114,7 +114,10 @@ bool SphSolver::check_state(double dt) {
         << " mm/s (the flow blew up, weak compressibility no longer holds)";
       break;
     case FailureKind::density:
-      m << "density deviates by " << 100 * drho_max << "% from rho0 (the flow blew up)";
+      m << "density deviates by " << 100 * drho_max << "% from rho0 "
+        << (steps_ == 0 ? "(at the first step: the starting arrangement of the particles is "
+                          "already that far from a uniform one)"
+                        : "(the flow blew up)");
       break;
     default:
       m << "concentration left the physical band [0, " << c_max << "] by " << c_dev
