@@ -305,10 +305,10 @@ TEST(Robustness, DtFactorIsAMultipleOfTheLimit) {
   Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
   c.species.D = 1e4;  // the diffusion limit binds (9x below the acoustic) and is sub-cycled
   const TimeStepLimits natural = time_step_limits(c);
-  ASSERT_GT(natural.species_substeps, 1);
+  ASSERT_GT(natural.diffusion_stages, 1);
   c.time.dt_factor = 2.0;
   const TimeStepLimits fixed = time_step_limits(c);
-  EXPECT_EQ(fixed.species_substeps, 1);
+  EXPECT_EQ(fixed.diffusion_stages, 1);
   EXPECT_DOUBLE_EQ(fixed.chosen, 2.0 * natural.diffusion);
   EXPECT_NE(fixed.binding.find("time.dt_factor"), std::string::npos) << fixed.binding;
 }

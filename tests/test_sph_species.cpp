@@ -190,7 +190,7 @@ TEST(Species, SubcycledDiffusionMatchesFullStepDiffusion) {
     c.fluid.c0_factor = 2.0;  // a lower c0 makes the acoustic step ~4x the diffusion step
     c.time.species_subcycling = subcycle;
     SphSolver solver(c);
-    substeps = solver.dt_limits().species_substeps;
+    substeps = solver.dt_limits().diffusion_stages;
     solver.track_species_balance(true);
     const double i0 = solver.species_inventory();
     const double dt = solver.dt_limits().chosen;

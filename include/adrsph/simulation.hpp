@@ -82,7 +82,7 @@ struct TimeStepLimits {
   double acoustic = 0.0, advective = 0.0, viscous = 0.0, diffusion = 0.0;  // 0: not applicable
   double chosen = 0.0;
   std::string binding;       // which limit set dt
-  int species_substeps = 1;  // RKL2 diffusion stages (sparse products) per step; 1: not split
+  int diffusion_stages = 1;  // RKL2 diffusion stages (sparse products) per step; 1: not split
 };
 
 struct RunResult {

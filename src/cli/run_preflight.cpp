@@ -83,7 +83,7 @@ std::optional<PreflightProblem> check_fixed_dt(const Case& c) {
 // never get anywhere is refused instead of left to hang.
 std::optional<PreflightProblem> check_cost(const Case& c) {
   const TimeStepLimits l = time_step_limits(c);
-  if (l.diffusion > 0.0 && l.species_substeps > 1) {
+  if (l.diffusion > 0.0 && l.diffusion_stages > 1) {
     const double flow = l.chosen, ratio = flow / l.diffusion;
     if (ratio > kMaxDiffusionRatio)
       return PreflightProblem{"species.D",
@@ -96,7 +96,7 @@ std::optional<PreflightProblem> check_cost(const Case& c) {
   const double pass = c.geometry.length / c.fluid.u_bulk;  // [s] one nominal residence time
   const double steps = pass / l.chosen;
   const double work = channel_particle_estimate(c) * steps *
-                      (l.species_substeps > 1 ? 1.0 + l.species_substeps : 1.0);
+                      (l.diffusion_stages > 1 ? 1.0 + l.diffusion_stages : 1.0);
   if (!(work <= kMaxParticleStepsPerPass)) {
     const std::string key = l.binding.rfind("viscous", 0) == 0     ? "fluid.nu"
                             : l.binding.rfind("diffusion", 0) == 0 ? "species.D"

@@ -37,7 +37,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
   grid_ = CellGrid(scene_.xmin() - cutoff_, scene_.xmax() + cutoff_, scene_.ymin() - cutoff_,
                    scene_.ymax() + cutoff_, cutoff_);
 
-  const bool split = limits_.species_substeps > 1;
+  const bool split = limits_.diffusion_stages > 1;
   if (c.flow == Flow::prescribed)
     bind<PrescribedFlow, false>(split);
   else if (c.scheme == Scheme::conventional)

@@ -51,7 +51,7 @@ inline TimeStepLimits time_step_limits(const Case& c) {
     if (std::isfinite(flow)) {
       // RKL2 super-steps within each flow step (diffusion_subcycling.hpp).
       const auto plan = DiffusionSubcycler::plan(std::min(flow / l.diffusion, 1e6));
-      l.species_substeps = plan.supersteps * plan.stages;  // sparse products per step
+      l.diffusion_stages = plan.supersteps * plan.stages;  // sparse products per step
       l.chosen = flow;
       std::ostringstream b;
       b << "flow; species diffusion limit " << std::setprecision(3) << flow / l.diffusion

@@ -53,7 +53,7 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
                  {"advective", number(r.dt.advective)},
                  {"viscous", number(r.dt.viscous)},
                  {"diffusion", number(r.dt.diffusion)},
-                 {"species_substeps", r.dt.species_substeps}};
+                 {"diffusion_stages", r.dt.diffusion_stages}};
   j["steady"] = r.steady;
   j["t_steady"] = r.steady ? number(r.t_steady) : Json(nullptr);
   j["lost_particles"] = r.lost_particles;
