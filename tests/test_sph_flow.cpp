@@ -167,6 +167,36 @@ TEST(Robustness, StepAboveStableLimitIsCaught) {
   EXPECT_TRUE(obs.all_finite) << "the last good state must be written, not the blown-up one";
 }
 
+// A warm start whose prescribed-flow run trips a guard stops the run (no half-made initial
+// field); a fixed step factor of a stability study leaves the warm start's own step alone.
+TEST(Robustness, WarmStartFailsLoudlyAndKeepsItsOwnStep) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 10.0);
+  c.time.warm_start = true;
+  c.time.t_end = 0.05;
+  c.output.field_times = {};
+  Case bad = c;
+  bad.species.D = 1000.0;
+  bad.species.c_init = 0.0;
+  bad.time.species_subcycling = false;
+  bad.time.diffusion_number = 5.0;  // 20x the explicit limit (validation would refuse it)
+  LastFrame obs;
+  try {
+    run_simulation(bad, obs);
+    ADD_FAILURE() << "the failed warm start went unnoticed";
+  } catch (const WarmStartFailed& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("warm start"), std::string::npos) << what;
+    EXPECT_NE(what.find("concentration"), std::string::npos) << what;
+    EXPECT_NE(what.find("time.warm_start = false"), std::string::npos) << what;
+  }
+  const RunResult plain = run_simulation(c, obs);
+  c.time.dt_factor = 2.0;
+  const RunResult fixed = run_simulation(c, obs);
+  EXPECT_EQ(plain.warm_start_steps, fixed.warm_start_steps);
+  EXPECT_GT(fixed.warm_start_steps, 0);
+  EXPECT_DOUBLE_EQ(fixed.dt.chosen, 2.0 * plain.dt.chosen);
+}
+
 // A step that trips a guard is undone: the particles, their kinds, the inflow rows (seen
 // through the next steps), the ledger, the crossings and the time are as before it.
 TEST(Robustness, FailedStepLeavesEverythingAsItWas) {

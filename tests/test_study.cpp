@@ -175,7 +175,7 @@ TEST(StudyPlan, ForceAndReport) {
   const auto stress = analysis::parse_study(test::source_dir() / "cases" / "stress_study.toml");
   EXPECT_EQ(stress.report, "stress");
   const auto map = analysis::expand_study(stress);
-  EXPECT_EQ(map.size(), 49u);
+  EXPECT_EQ(map.size(), 57u);
   EXPECT_TRUE(find_run(map, "dt-modern-dt_factor8").force);
   EXPECT_FALSE(find_run(map, "jitter-modern-jitter0.4").force);
   EXPECT_DOUBLE_EQ(find_run(map, "pe-conventional-pe0.1").D, 1e5);

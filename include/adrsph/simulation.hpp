@@ -78,6 +78,13 @@ class RunInterrupted : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The prescribed-flow run of time.warm_start failed a guard: there is no initial field to
+// start the WCSPH run from (what() says why and what to change).
+class WarmStartFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct TimeStepLimits {
   double acoustic = 0.0, advective = 0.0, viscous = 0.0, diffusion = 0.0;  // 0: not applicable
   double chosen = 0.0;

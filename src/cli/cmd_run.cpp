@@ -279,6 +279,10 @@ int run(const RunOptions& o) {
     observer.end_progress();
     error(std::string(e.what()) + "; nothing to continue: start the run again");
     return kExitInterrupted;
+  } catch (const WarmStartFailed& e) {
+    observer.end_progress();
+    error(e.what());
+    return kExitRunFailed;
   } catch (const CaseError& e) {
     observer.end_progress();
     error(e.what());

@@ -73,6 +73,7 @@ std::vector<double> warm_start(const Case& c, RunObserver& observer, RunResult& 
   pre.flow = Flow::prescribed;
   pre.time.cfl = std::max(c.time.cfl, 1.0);  // advective limit: particles move <= h per step
   pre.time.dt = 0.0;
+  pre.time.dt_factor = 0.0;  // a stability study's fixed step is for the WCSPH run only
   // Steps of up to h make the lists age fast: a larger skin pays (perf/README.md, 3.4).
   pre.particles.skin = std::max(c.particles.skin, Case::Particles::kPrescribedSkin);
   SphSolver solver(pre);
@@ -81,7 +82,10 @@ std::vector<double> warm_start(const Case& c, RunObserver& observer, RunResult& 
   const int n_section = section_samples(c);
   double next_check = c.time.check_interval;
   while (solver.time() < c.time.t_end && !steady.steady()) {
-    if (!solver.step(std::min(dt, c.time.t_end - solver.time()))) break;
+    if (!solver.step(std::min(dt, c.time.t_end - solver.time())))
+      throw WarmStartFailed(
+          "the warm start (species in the prescribed flow) failed: " + solver.failure() + " " +
+          failure_advice(solver.failure_kind(), pre, 0.0) + " Or set time.warm_start = false.");
     if (observer.checkpoint_request(omp_get_wtime() - wall0) == CheckpointRequest::write_and_stop)
       throw RunInterrupted("interrupted during the warm start (no checkpoint yet)");
     if (solver.time() >= next_check) {
