@@ -16,22 +16,7 @@ packages=(
   python3 python3-matplotlib python3-h5py     # tools/*.py (plots)
 )
 
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "setup: installing ${missing[*]}"
-  sudo=()
-  if [[ $(id -u) -ne 0 ]]; then
-    command -v sudo >/dev/null || { echo "setup: run as root to install: ${missing[*]}" >&2; exit 1; }
-    sudo=(sudo)
-  fi
-  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
-  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}"
-else
-  echo "setup: all Debian packages present"
-fi
+tools/install_packages.sh setup "${packages[@]}"
 
 # ADRSPH_WERROR is passed only when set, so that a build dir keeps its setting (no full rebuild
 # when the first README command follows the second).
