@@ -41,6 +41,25 @@ TEST(OutputDir, NoCommitLeavesTheOldRunAndNoStaging) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator{}), 1);
 }
 
+// DIR.partial without a checkpoint (a run killed before its first one) is removed by the next
+// run into DIR, which is told so; an earlier complete DIR stays until that run commits.
+TEST(OutputDir, StaleStagingIsRemovedAndReported) {
+  test::TempDir dir;
+  const auto out = dir / "run";
+  fs::create_directories(out);
+  test::write_file(out / "run.json", "old");
+  fs::create_directories(dir / "run.partial");
+  test::write_file(dir / "run.partial" / "fields.h5", "half-written");
+  {
+    StagedDir s(out);
+    EXPECT_TRUE(s.removed_stale());
+    EXPECT_FALSE(fs::exists(s.path() / "fields.h5"));
+    EXPECT_EQ(test::read_file(out / "run.json"), "old");
+  }
+  StagedDir clean(out);
+  EXPECT_FALSE(clean.removed_stale());
+}
+
 TEST(OutputDir, CreatesParentsAndAcceptsTrailingSlash) {
   test::TempDir dir;
   {

@@ -235,6 +235,11 @@ int run(const RunOptions& o) {
   std::optional<StagedDir> stage;
   try {
     stage.emplace(setup.out, setup.resume ? StagedDir::Mode::resume : StagedDir::Mode::fresh);
+    if (stage->removed_stale())
+      std::fprintf(stderr,
+                   "adrsph run: note: removed %s, left by an earlier run into the same directory "
+                   "that stopped without a checkpoint\n",
+                   stage->path().c_str());
     if (!setup.resume)
       std::ofstream(stage->path() / "case.toml", std::ios::binary) << setup.base.case_text;
   } catch (const std::exception& e) {

@@ -95,6 +95,7 @@ StagedDir::StagedDir(fs::path final_dir, Mode mode)
       // Left by a run that died without a checkpoint: nothing in it is worth keeping.
       release_lock();
       fs::remove_all(staging_, ec);
+      removed_stale_ = true;
     }
   }
   if (mode == Mode::fresh) {

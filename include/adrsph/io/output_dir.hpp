@@ -33,6 +33,9 @@ class StagedDir {
 
   // Leave the staging directory in place (an interrupted run with a checkpoint).
   void keep() { keep_ = true; }
+  // A staging directory left by a run that died without a checkpoint (SIGKILL, power loss)
+  // was found and removed before this run started: the caller says so.
+  bool removed_stale() const { return removed_stale_; }
   // Replaces DIR by the staging directory (old DIR moved aside, then removed).
   void commit();
 
@@ -40,7 +43,7 @@ class StagedDir {
   void release_lock();
   std::filesystem::path final_, staging_;
   int lock_fd_ = -1;
-  bool committed_ = false, keep_ = false;
+  bool committed_ = false, keep_ = false, removed_stale_ = false;
 };
 
 }  // namespace adrsph
