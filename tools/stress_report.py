@@ -137,8 +137,6 @@ def collect(runs):
     rows = []
     for r in runs:
         key, value = axis_of(r)
-        if not key:
-            key, value = "", math.nan
         rows.append(Row(r, key, value, defaults.get(r.scheme)))
     return rows, defaults
 
