@@ -121,6 +121,7 @@ TEST(StudyPlan, PaperStudyExpandsInFileOrder) {
   EXPECT_EQ(runs[3].name, "prescribed-pe1000-dx0.5");
   EXPECT_EQ(runs[9].name, "paper-conventional-pe10-dx0.5");
   EXPECT_EQ(runs[18].name, "paper-modern-pe10-dx0.5");
+  EXPECT_EQ(runs[18].group, "paper-modern");
   EXPECT_EQ(runs[26].name, "paper-modern-pe100000-dx0.125");
   EXPECT_EQ(runs[27].name, "warm-conventional-pe10-dx0.5");
   EXPECT_EQ(runs.back().name, "ale-pe100000");
@@ -131,16 +132,19 @@ TEST(StudyPlan, PaperStudyExpandsInFileOrder) {
   EXPECT_DOUBLE_EQ(pe10.D, 1000.0);
   EXPECT_DOUBLE_EQ(pe10.pe, 10.0);
   EXPECT_EQ(pe10.pe_label, "10");
-  EXPECT_THAT(pe10.sets, ElementsAre("time.warm_start=false", "scheme=modern", "species.D=1000",
-                                     "particles.dx=0.25"));
+  EXPECT_THAT(pe10.sets, ElementsAre("time.warm_start=false", "time.cfl=0.75", "scheme=modern",
+                                     "species.D=1000", "particles.dx=0.25"));
+  EXPECT_THAT(find_run(runs, "paper-conventional-pe10-dx0.25").sets,
+              ElementsAre("time.warm_start=false", "scheme=conventional", "species.D=1000",
+                          "particles.dx=0.25"));
   EXPECT_DOUBLE_EQ(find_run(runs, "prescribed-pe100000-dx0.5").D, 0.1);
   EXPECT_EQ(find_run(runs, "prescribed-pe100000-dx0.5").pe_label, "100000");
   EXPECT_THAT(find_run(runs, "prescribed-pe1000-dx0.125").sets,
               ElementsAre("time.cfl=1", "particles.skin=0.2", "flow=prescribed", "species.D=10",
                           "particles.dx=0.125"));
-  EXPECT_THAT(
-      find_run(runs, "ale-pe1000").sets,
-      ElementsAre("scheme=modern", "species.D=10", "particles.dx=0.25", "species.ale=true"));
+  EXPECT_THAT(find_run(runs, "ale-pe1000").sets,
+              ElementsAre("time.cfl=0.75", "scheme=modern", "species.D=10", "particles.dx=0.25",
+                          "species.ale=true"));
   EXPECT_EQ(find_run(runs, "warm-modern-pe1000-dx0.5").sets[0], "time.warm_start=true");
 }
 
@@ -273,6 +277,28 @@ TEST(StudyCli, TinyStudyRunsOnceAndResumes) {
     EXPECT_THAT(r.out, HasSubstr("t-pe1000: done, restored from the report"));
     EXPECT_THAT(r.out, Not(HasSubstr("t-pe1000: started")));
     EXPECT_TRUE(fs::exists(runs / "t-pe100000" / "stations.csv"));
+
+    // A restored run has no args.json; its run.json `overrides` still say what it was made
+    // with, so a study file that now gives other settings is noticed, and the report's
+    // copies made with other settings are not restored.
+    EXPECT_FALSE(fs::exists(runs / "t-pe1000.args.json"));
+    test::write_file(dir / "tiny.toml", tiny_study(21));
+    r = test::run_adrsph("study tiny.toml --resume --dry-run", dir.path());
+    EXPECT_THAT(r.out, HasSubstr("CHANGED"));
+    r = test::run_adrsph("study tiny.toml --resume", dir.path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_THAT(r.err, HasSubstr("run 't-pe1000'"));
+    fs::remove_all(runs);
+    r = test::run_adrsph("study tiny.toml --resume --only t-pe1000 --report changed_report",
+                         dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_THAT(r.out, Not(HasSubstr("restored")));
+    EXPECT_THAT(r.out, HasSubstr("t-pe1000: started"));
+    test::write_file(dir / "tiny.toml", tiny_study(20));
+    fs::remove_all(runs);
+    r = test::run_adrsph("study tiny.toml --resume --report kept_report", dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_THAT(r.out, HasSubstr("t-pe1000: done, restored from the report"));
 
     // A run of an engine that computed differently (run.json without the current
     // results_version) is stale: moved aside and run again, never mixed into the study; the

@@ -46,13 +46,12 @@ fs::path absolute_normal(const fs::path& p) {
 // A run started with other arguments than the study file now gives it: its results would
 // not be what the study says. Empty when it matches or was not started by a study.
 std::string changed_arguments(const RunFiles& f, const StudyRun& run, const fs::path& case_file) {
-  const auto args = read_run_args(f.args);
-  if (!args) return {};
-  if (args->case_file != case_file.string())
+  if (const auto args = read_run_args(f.args); args && args->case_file != case_file.string())
     return "case " + args->case_file + " (now " + case_file.string() + ")";
-  if (args->sets != run.sets) {
+  const auto sets = recorded_sets(f);  // args.json, or run.json of a run restored from a report
+  if (sets && *sets != run.sets) {
     std::string was, now;
-    for (const auto& s : args->sets) was += " --set " + s;
+    for (const auto& s : *sets) was += " --set " + s;
     for (const auto& s : run.sets) now += " --set " + s;
     return "started with" + was + "; the study file now gives" + now;
   }

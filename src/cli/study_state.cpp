@@ -100,8 +100,9 @@ std::vector<std::string> restore_from_report(const fs::path& runs_dir, const fs:
     const RunFiles f = run_files(runs_dir, r.name);
     const fs::path copy = report_dir / "runs" / r.name;
     const RunRecord saved = read_run_record(copy);
-    if (run_present(f) || saved.status.empty() || saved.results_version != kResultsVersion)
-      continue;  // on disk already, nothing saved, or an older engine's numbers
+    if (run_present(f) || saved.status.empty() || saved.results_version != kResultsVersion ||
+        (saved.overrides && *saved.overrides != r.sets))
+      continue;  // on disk already, nothing saved, an older engine's numbers or other settings
     std::error_code ec;
     fs::create_directories(f.dir.parent_path(), ec);
     fs::copy(copy, f.dir, fs::copy_options::recursive, ec);
@@ -127,7 +128,18 @@ RunRecord read_run_record(const fs::path& run_dir) {
     r.t_steady = it->get<double>();
   if (const auto it = j->find("results_version"); it != j->end() && it->is_number_integer())
     r.results_version = it->get<int>();
+  if (const auto it = j->find("overrides"); it != j->end() && it->is_array()) {
+    std::vector<std::string> sets;
+    for (const Json& v : *it)
+      if (v.is_string()) sets.push_back(v.get<std::string>());
+    r.overrides = std::move(sets);
+  }
   return r;
+}
+
+std::optional<std::vector<std::string>> recorded_sets(const RunFiles& f) {
+  if (const auto args = read_run_args(f.args)) return args->sets;
+  return read_run_record(f.dir).overrides;
 }
 
 void write_run_args(const fs::path& file, const std::vector<std::string>& argv,

@@ -48,6 +48,8 @@ struct RunRecord {
   double wall_seconds = 0, t_reached = 0;
   std::optional<double> t_steady;
   int results_version = 1;  // run.json `results_version` (absent before version 2)
+  // run.json `overrides`: the --set values the run was made with (none if absent).
+  std::optional<std::vector<std::string>> overrides;
 };
 RunRecord read_run_record(const std::filesystem::path& run_dir);
 
@@ -61,6 +63,9 @@ struct RunArgs {
 void write_run_args(const std::filesystem::path& file, const std::vector<std::string>& argv,
                     const RunArgs& args);
 std::optional<RunArgs> read_run_args(const std::filesystem::path& file);
+// The --set values a run on disk was made with: <name>.args.json, or for a run without it (one
+// restored from a report) its run.json `overrides`. None when neither says.
+std::optional<std::vector<std::string>> recorded_sets(const RunFiles& f);
 
 // One line of study.json's "runs".
 struct StudyJsonRun {
