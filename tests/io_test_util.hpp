@@ -127,6 +127,7 @@ inline const std::vector<const char*> kRunJsonKeys = {"case",
                                                       "load_average",
                                                       "ale",
                                                       "peak_rss_bytes",
+                                                      "engine_bytes",
                                                       "restarts",
                                                       "steady_criterion",
                                                       "results_version"};

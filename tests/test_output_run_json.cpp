@@ -25,6 +25,7 @@ RunResult sample_result() {
   r.stations = {{25.0, 50.0, 100.0}, {1.38, 1.04, 0.63}};
   r.average_window = 0.5;
   r.probe_interpolation = "Shepard";
+  r.engine_bytes = {1000, 2000, 300};
   return r;
 }
 
@@ -82,6 +83,9 @@ TEST(RunJson, EveryKey) {
   EXPECT_DOUBLE_EQ(j["stations"]["100"].get<double>(), 0.63);
   EXPECT_EQ(j["field_frames"], 3);
   EXPECT_TRUE(j["warm_start"].is_null());
+  EXPECT_EQ(j["engine_bytes"]["particles"], 1000);
+  EXPECT_EQ(j["engine_bytes"]["neighbour_lists"], 2000);
+  EXPECT_EQ(j["engine_bytes"]["diffusion_weights"], 300);
 }
 
 TEST(RunJson, WarmStart) {

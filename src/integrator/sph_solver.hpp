@@ -80,6 +80,10 @@ class SphSolver {
   double mean_neighbours() const { return list_.mean_neighbours(); }
   long list_rebuilds() const { return rebuilds_; }
   double particle_steps() const { return particle_steps_; }
+  // Heap bytes of the particle arrays, the neighbour lists and the diffusion weights.
+  std::size_t particle_bytes() const { return store_.bytes(); }
+  std::size_t list_bytes() const { return list_.bytes(); }
+  std::size_t diffusion_weight_bytes() const { return subcycler_.bytes(); }
   // Probe sampling on the grid of the last sort, read-only: a particle within the support of
   // a probe now was within support + moved_abs_ at the sort, so the search covers that many
   // cells of size cutoff_ around it.

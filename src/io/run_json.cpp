@@ -86,6 +86,9 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
                            {"end", ctx.load_end >= 0 ? Json(ctx.load_end) : Json(nullptr)}};
   j["ale"] = c.species.ale;
   j["peak_rss_bytes"] = number(r.peak_rss_bytes);
+  j["engine_bytes"] = {{"particles", r.engine_bytes.particles},
+                       {"neighbour_lists", r.engine_bytes.neighbour_lists},
+                       {"diffusion_weights", r.engine_bytes.diffusion_weights}};
   j["restarts"] = r.restarts;
   j["steady_criterion"] = Json{{"tol", number(r.steady_criterion.tol)},
                                {"window", number(r.steady_criterion.window)},
