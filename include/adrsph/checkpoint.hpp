@@ -27,9 +27,8 @@ struct SolverSnapshot {
   double t = 0.0;
   long steps = 0, lost = 0, lost_reported = 0, rebuilds = 0;
   double particle_steps = 0.0;
-  std::array<double, 4> ledger{};  // inflow, outflow, buffer exchange, reaction
-  long entered = 0, left = 0;      // boundary crossings
-  double species_in = 0.0, species_out = 0.0;
+  std::array<double, 4> ledger{};     // inflow, outflow, buffer exchange, reaction
+  long entered = 0, left = 0;         // boundary crossings (their species: ledger)
   std::vector<double> phase_seconds;  // per PhaseTimers phase
 };
 

@@ -258,8 +258,6 @@ void SphSolver::update_buffers(double dt) {
   const auto crossed = scene_.update_kinds(store_);
   crossings_.entered += crossed.entered;
   crossings_.left += crossed.left;
-  crossings_.species_in += crossed.species_in;
-  crossings_.species_out += crossed.species_out;
   ledger_.inflow += crossed.species_in;
   ledger_.outflow += crossed.species_out;
 }

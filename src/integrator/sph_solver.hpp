@@ -49,6 +49,11 @@ class SphSolver {
   double time() const { return t_; }
   long steps() const { return steps_; }
   const TimeStepLimits& dt_limits() const { return limits_; }
+  // What the passes are given (benchmarks time single passes with them).
+  const PhysicsConstants& physics() const { return phys_; }
+  const QuinticKernel& kernel() const { return kernel_; }
+  const CellGrid& grid() const { return grid_; }
+  double cutoff() const { return cutoff_; }
   const ParticleStore& particles() const { return store_; }
   ParticleStore& particles() { return store_; }
   PhaseTimers& timers() { return timers_; }
@@ -69,8 +74,12 @@ class SphSolver {
   };
   const FailureSite& failure_site() const { return failure_site_; }
   long lost_particles() const { return lost_; }
-  // Particles that crossed the inlet and outlet planes since the start.
-  const ChannelScene::Crossings& boundary_crossings() const { return crossings_; }
+  // Particles that crossed the inlet and outlet planes since the start (the species they
+  // carried is in the ledger: inflow, outflow).
+  struct Crossings {
+    long entered = 0, left = 0;
+  };
+  const Crossings& boundary_crossings() const { return crossings_; }
   // Track the diffusive exchange with the buffers (one extra neighbour pass per step).
   void track_species_balance(bool on) { track_balance_ = on; }
   const SpeciesLedger& species_ledger() const { return ledger_; }
@@ -167,7 +176,7 @@ class SphSolver {
   long steps_ = 0;
   long lost_ = 0;
   long lost_reported_ = 0;  // lost_ at the last failure report
-  ChannelScene::Crossings crossings_;
+  Crossings crossings_;
   SpeciesLedger ledger_;
   DiffusionSubcycler subcycler_;
   bool track_balance_ = false;

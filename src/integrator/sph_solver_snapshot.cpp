@@ -30,8 +30,6 @@ SolverSnapshot SphSolver::snapshot() const {
   s.ledger = {ledger_.inflow, ledger_.outflow, ledger_.buffer_exchange, ledger_.reaction};
   s.entered = crossings_.entered;
   s.left = crossings_.left;
-  s.species_in = crossings_.species_in;
-  s.species_out = crossings_.species_out;
   s.phase_seconds = timers_.totals();
   return s;
 }
@@ -67,7 +65,7 @@ void SphSolver::restore(const SolverSnapshot& s) {
   rebuilds_ = s.rebuilds;
   particle_steps_ = s.particle_steps;
   ledger_ = {s.ledger[0], s.ledger[1], s.ledger[2], s.ledger[3]};
-  crossings_ = {s.entered, s.left, s.species_in, s.species_out};
+  crossings_ = {s.entered, s.left};
   timers_.set_totals(s.phase_seconds);
 }
 

@@ -111,10 +111,7 @@ constexpr std::pair<const char*, Array<double>> kSolverDoubles[] = {
 constexpr std::pair<const char*, Array<float>> kSolverFloats[] = {{"p", &SolverSnapshot::p},
                                                                   {"vol", &SolverSnapshot::vol}};
 constexpr std::pair<const char*, double SolverSnapshot::*> kSolverScalars[] = {
-    {"t", &SolverSnapshot::t},
-    {"particle_steps", &SolverSnapshot::particle_steps},
-    {"species_in", &SolverSnapshot::species_in},
-    {"species_out", &SolverSnapshot::species_out}};
+    {"t", &SolverSnapshot::t}, {"particle_steps", &SolverSnapshot::particle_steps}};
 constexpr std::pair<const char*, long SolverSnapshot::*> kSolverCounters[] = {
     {"steps", &SolverSnapshot::steps},
     {"lost", &SolverSnapshot::lost},
