@@ -71,6 +71,7 @@ void SphSolver::bind(bool split) {
   step_fn_ = split ? &SphSolver::step_impl<S, Ale, true> : &SphSolver::step_impl<S, Ale, false>;
   eval_fn_ = split ? &SphSolver::evaluate_at_rest<S, Ale, true>
                    : &SphSolver::evaluate_at_rest<S, Ale, false>;
+  store_.set_needs({S::momentum, S::continuity, S::shifting});  // the arrays S uses, no more
 }
 
 std::size_t SphSolver::fluid_count() const {

@@ -53,7 +53,7 @@ void SphSolver::restore(const SolverSnapshot& s) {
     store_.p[i] = s.p[i];
     store_.vol[i] = s.vol[i];
     store_.set_kind(i, static_cast<Kind>(s.kind[i]));
-    store_.sx[i] = store_.sy[i] = 0.0f;
+    if (store_.needs().shifting) store_.sx[i] = store_.sy[i] = 0.0f;
   }
   // The particles were saved in cell order right after a rebuild: the stable sort keeps
   // them in place and the lists come out as they were.

@@ -35,11 +35,12 @@ bool SphSolver::check_state(double dt) {
   // may move it slightly. A species step beyond its stability limit leaves this band fast.
   const double c_max = std::max(case_.species.c_in, case_.species.c_init);
   const double rho0 = case_.fluid.rho0;
+  const bool shifting = s.needs().shifting;  // sx, sy exist only for a shifting scheme
 #pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max, c_dev) reduction(+ : bad)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] == kWallByte) continue;
     const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
-    const bool shifts = s.kind[i] == kFluidByte;  // sx, sy are only defined for fluid particles
+    const bool shifts = shifting && s.kind[i] == kFluidByte;  // sx, sy: fluid particles only
     const double tx = s.vx[i] + (shifts ? s.sx[i] : 0.0), ty = s.vy[i] + (shifts ? s.sy[i] : 0.0);
     const double t2 = tx * tx + ty * ty;  // transport velocity (how far particles move)
     const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&

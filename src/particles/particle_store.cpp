@@ -41,6 +41,18 @@ void ParticleStore::resize(std::size_t n) {
   reset_padding();
 }
 
+void ParticleStore::set_needs(Needs n) {
+  // Free what is switched off, then size what is on (resize skips nothing it visits).
+  auto release = [](auto& a) { std::decay_t<decltype(a)>().swap(a); };
+  if (!n.momentum) release(ax), release(ay), release(vx_start), release(vy_start);
+  if (!n.continuity) release(drho), release(rho_start);
+  if (!n.shifting) release(sx), release(sy);
+  needs_ = n;
+  const std::size_t cap = capacity();
+  reserve(cap);
+  resize(n_);
+}
+
 void ParticleStore::reset_padding() {
   const std::size_t k = n_;
   x[k] = y[k] = 1e12;  // far beyond any support: W = grad W = 0 for every pair with it

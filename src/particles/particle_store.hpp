@@ -38,6 +38,16 @@ struct ParticleStore {
 
   double mass = 0.0;  // every particle carries m = rho0 dx^2 (per unit depth)
 
+  // Which optional arrays the scheme writes and reads (scheme_traits.hpp): the others stay
+  // empty. Set before the store is first sized (set_needs() resizes what it switches on).
+  struct Needs {
+    bool momentum = true;    // ax, ay and the start-of-step velocity
+    bool continuity = true;  // drho and the start-of-step density
+    bool shifting = true;    // sx, sy
+  };
+  void set_needs(Needs n);
+  const Needs& needs() const { return needs_; }
+
   std::size_t size() const { return n_; }
   std::size_t padding_index() const { return n_; }
 
@@ -63,10 +73,11 @@ struct ParticleStore {
     for_each_start_pair(*this, [i](auto& now, auto& start) { now[i] = start[i]; });
   }
 
-  // The field list: every array of the store, once. reserve, resize, bytes and permute are
-  // derived from it, so a new field is one line here. `carried` arrays follow their particle
-  // through a re-sort; the others are rewritten every evaluation or step before they are read,
-  // so a re-sort only sizes them.
+  // The field list: every array of the store the scheme needs, once. reserve, resize, bytes
+  // and permute are derived from it, so a new field is one line here. `carried` arrays follow
+  // their particle through a re-sort; the others are rewritten every evaluation or step
+  // before they are read, so a re-sort only sizes them. Arrays of needs switched off are not
+  // visited: they stay empty.
   enum class Role { carried, per_step };
   template <class Store, class Visit>
   static void for_each_field(Store& s, Visit&& visit) {
@@ -75,15 +86,20 @@ struct ParticleStore {
     visit(s.rho, carried), visit(s.c, carried), visit(s.kind, carried);
     visit(s.p, carried), visit(s.vol, carried);
     visit(s.diffusion_mask, carried), visit(s.fluid_side, carried);
-    visit(s.ax, per_step), visit(s.ay, per_step), visit(s.drho, per_step), visit(s.dc, per_step);
-    visit(s.sx, per_step), visit(s.sy, per_step);
+    visit(s.dc, per_step);
+    if (s.needs_.momentum) visit(s.ax, per_step), visit(s.ay, per_step);
+    if (s.needs_.continuity) visit(s.drho, per_step);
+    if (s.needs_.shifting) visit(s.sx, per_step), visit(s.sy, per_step);
     for_each_start_pair(s, [&](auto&, auto& start) { visit(start, per_step); });
   }
-  // The state the explicit midpoint saves at the start of a step, with its copy.
+  // The state the explicit midpoint saves at the start of a step, with its copy: positions
+  // and C always, the velocity when the momentum equation moves it, the density when the
+  // continuity equation does (summation density is derived, a prescribed flow keeps both).
   template <class Store, class Visit>
   static void for_each_start_pair(Store& s, Visit&& visit) {
-    visit(s.x, s.x_start), visit(s.y, s.y_start), visit(s.vx, s.vx_start);
-    visit(s.vy, s.vy_start), visit(s.rho, s.rho_start), visit(s.c, s.c_start);
+    visit(s.x, s.x_start), visit(s.y, s.y_start), visit(s.c, s.c_start);
+    if (s.needs_.momentum) visit(s.vx, s.vx_start), visit(s.vy, s.vy_start);
+    if (s.needs_.continuity) visit(s.rho, s.rho_start);
   }
   // Keep the masks in step with kind[i] after a kind change.
   void set_kind(std::size_t i, Kind k) {
@@ -94,6 +110,7 @@ struct ParticleStore {
 
  private:
   std::size_t n_ = 0;
+  Needs needs_;
   // permute() gathers into these and swaps them in; they keep the store's capacity.
   std::vector<double> scratch_;
   std::vector<float> scratch_f_;
