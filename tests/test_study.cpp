@@ -262,7 +262,7 @@ TEST(StudyCli, TinyStudyRunsOnceAndResumes) {
   r = test::run_adrsph("study tiny.toml --resume", dir.path());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("run 't-pe1000'"));
-  EXPECT_THAT(r.err, HasSubstr("remove its directory"));
+  EXPECT_THAT(r.err, HasSubstr("--rerun-changed"));
   EXPECT_EQ(fs::last_write_time(runs / "t-pe1000" / "run.json"), t0);
 
   // On a machine without the runs directory, --resume takes the done runs back from the
@@ -330,6 +330,33 @@ TEST(StudyCli, TinyStudyRunsOnceAndResumes) {
   } else {
     ADD_FAILURE() << "no report written: " << test::read_file(runs / "report.log");
   }
+}
+
+TEST(StudyCli, RerunChangedMovesChangedRunsAsideAndRunsThemAgain) {
+  test::TempDir dir;
+  test::write_file(dir / "tiny.toml", tiny_study(20));
+  const fs::path runs = dir / "runs";
+  auto r = test::run_adrsph("study tiny.toml --only t-pe1000 --report rep", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+
+  test::write_file(dir / "tiny.toml", tiny_study(21));
+  r = test::run_adrsph("study tiny.toml --resume --only t-pe1000 --report rep", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--rerun-changed"));
+  r = test::run_adrsph("study tiny.toml --resume --rerun-changed --only t-pe1000 --report rep",
+                       dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, HasSubstr("t-pe1000: the study file now gives it other arguments"));
+  EXPECT_THAT(r.out, HasSubstr("t-pe1000: started"));
+  // The old run is kept aside, the new one has the study file's arguments.
+  const auto old = nlohmann::json::parse(
+      test::read_file(runs / "stale" / "t-pe1000.changed" / "t-pe1000" / "run.json"));
+  const auto now = nlohmann::json::parse(test::read_file(runs / "t-pe1000" / "run.json"));
+  EXPECT_EQ(old["steps"], 20);
+  EXPECT_EQ(now["steps"], 21);
+  r = test::run_adrsph("study tiny.toml --resume --only t-pe1000 --report rep", dir.path());
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_THAT(r.out, Not(HasSubstr("started")));
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ using analysis::StudyRun;
 struct StudyOptions {
   std::string study_file;
   std::vector<std::string> only;
-  bool resume = false, dry_run = false;
+  bool resume = false, dry_run = false, rerun_changed = false;
   int jobs = 1, threads = 0;
   std::string out, report;
 };
@@ -175,12 +175,15 @@ int run_study_command(const StudyOptions& o) {
   if (!o.resume && present != runs.end())
     return error(runs_dir.string() + " already holds runs of this study (e.g. " + present->name +
                  "); continue them with --resume, or choose another --out");
+  std::vector<std::string> changed_runs;  // made with other arguments than the study now gives
   for (const StudyRun& r : runs) {
     const std::string changed = changed_arguments(run_files(runs_dir, r.name), r, case_file);
-    if (!changed.empty())
+    if (changed.empty()) continue;
+    if (!o.rerun_changed)
       return error("run '" + r.name + "' in " + runs_dir.string() + " was " + changed +
-                   "; remove its directory (" + r.name + ", " + r.name + ".partial, " + r.name +
-                   ".args.json) to run it anew, or restore the study file");
+                   "; run it anew with --rerun-changed (its files are moved to " +
+                   (runs_dir / "stale").string() + "), or restore the study file");
+    changed_runs.push_back(r.name);
   }
   std::error_code ec;
   fs::create_directories(runs_dir, ec);
@@ -188,6 +191,17 @@ int run_study_command(const StudyOptions& o) {
   if (!lock_runs_dir(runs_dir))
     return error("another adrsph study is running in " + runs_dir.string());
 
+  // --rerun-changed: runs the study file now gives other arguments are moved aside (all of
+  // them: they no longer belong to the study) and the selected ones run again.
+  for (const std::string& name : changed_runs) {
+    try {
+      const fs::path to = retire_stale_run(runs_dir, name, "changed");
+      std::printf("%s: the study file now gives it other arguments: moved to %s\n", name.c_str(),
+                  to.c_str());
+    } catch (const std::exception& e) {
+      return error(std::string("cannot move a changed run aside: ") + e.what());
+    }
+  }
   // Runs of an engine that computes differently (kResultsVersion) are moved aside and run
   // again: a study never mixes the numbers of two engines.
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -265,6 +279,10 @@ Command register_study(CLI::App& app) {
   sub->add_flag("--resume", o->resume,
                 "Continue a study whose runs directory already holds runs (without it the "
                 "study refuses to start there)");
+  sub->add_flag("--rerun-changed", o->rerun_changed,
+                "Runs made with other arguments than the study file now gives them: move their "
+                "files to RUNS_DIR/stale/<name>.changed/ and run them again (without it the "
+                "study stops, naming the run)");
   sub->add_option("--jobs,-j", o->jobs, "Runs at once (default 1)")
       ->check(CLI::Range(1, kMaxThreads));
   sub->add_option("--threads", o->threads,

@@ -59,12 +59,21 @@ RunState run_state(const RunFiles& f) {
   return r.results_version == kResultsVersion ? RunState::done : RunState::stale;
 }
 
-fs::path retire_stale_run(const fs::path& runs_dir, const std::string& name) {
+fs::path retire_stale_run(const fs::path& runs_dir, const std::string& name,
+                          const std::string& label) {
   const RunFiles f = run_files(runs_dir, name);
   int version = read_run_record(f.dir).results_version;
   if (!fs::exists(f.dir / "run.json"))
     if (const auto args = read_run_args(f.args)) version = args->results_version;
-  const std::string base = name + ".v" + std::to_string(version);
+  // (Built by appends: g++ 12 sees a false -Wrestrict in the one-expression form.)
+  std::string base = name;
+  base += '.';
+  if (label.empty()) {
+    base += 'v';
+    base += std::to_string(version);
+  } else {
+    base += label;
+  }
   fs::path to = runs_dir / "stale" / base;
   for (int k = 2; fs::exists(to); ++k) to = runs_dir / "stale" / (base + "." + std::to_string(k));
   fs::create_directories(to);

@@ -28,10 +28,10 @@ RunState run_state(const RunFiles& f);
 const char* to_string(RunState s);  // "new", "resume", "done", "stale"
 // Anything of the run on disk (its directory, staging directory, arguments or log).
 bool run_present(const RunFiles& f);
-// Move a stale run's files to RUNS_DIR/stale/<name>.v<version>[.<k>]/ (kept for comparison,
-// out of the study's way). Returns that directory.
+// Move a stale run's files to RUNS_DIR/stale/<name>.<label>[.<k>]/ (kept for comparison, out
+// of the study's way), the label "v<version>" by default. Returns that directory.
 std::filesystem::path retire_stale_run(const std::filesystem::path& runs_dir,
-                                       const std::string& name);
+                                       const std::string& name, const std::string& label = {});
 
 // A study continued on another machine finds its runs directory empty, but the committed
 // report keeps a copy of every done run's small files (REPORT_DIR/runs/<name>/: run.json,
