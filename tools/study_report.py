@@ -803,6 +803,15 @@ def write_report(runs_dir, report_dir, warm_tol=0.0005, contours=True):
           (", ".join(f"Pe = {fmt_pe(p)}" for p in sorted(refs)) or "none found") +
           ". Every number below is recomputed from the runs' stations.csv and probes.csv "
           "(copied to [runs/](runs/)); [summary.csv](summary.csv) has one row per run.\n"]
+    # The step of each kind of run, from its --set (the base case's when not set).
+    steps = {}
+    for r in runs:
+        who = "prescribed flow" if r.kind == "prescribed" else f"{r.scheme or '?'} ({r.kind})"
+        steps.setdefault(who, set()).add(str(r.sets.get("time.cfl", "that of the base case")))
+    if steps:
+        md.append("Time steps, `time.cfl` (acoustic Courant number; advective in the prescribed "
+                  "flow): " + "; ".join(f"{who} {', '.join(sorted(v))}"
+                                        for who, v in sorted(steps.items())) + ".\n")
     if n[FAILED]:
         md.append("Failed runs: " + "; ".join(
             f"`{r.name}`" + (f" ({r.message})" if r.message else "")
