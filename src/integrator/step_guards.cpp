@@ -8,6 +8,21 @@
 
 namespace adrsph {
 
+namespace {
+// |transport velocity|^2 of particle i: how far it moves (u + du for a shifting scheme's
+// fluid particles, u otherwise; sx, sy exist only for a shifting scheme).
+inline double transport_speed2(const ParticleStore& s, std::size_t i, bool shifting) {
+  const bool shifts = shifting && s.kind[i] == kFluidByte;
+  const double tx = s.vx[i] + (shifts ? s.sx[i] : 0.0), ty = s.vy[i] + (shifts ? s.sy[i] : 0.0);
+  return tx * tx + ty * ty;
+}
+// Every value the guards read of particle i is finite (t2: its transport_speed2).
+inline bool finite_state(const ParticleStore& s, std::size_t i, double t2) {
+  return std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&
+         std::isfinite(s.rho[i]) && std::isfinite(s.c[i]);
+}
+}  // namespace
+
 // Particles a re-sort found outside the channel. The step that moved them is kept (they are
 // removed already): the failure says so and stops the run there.
 bool SphSolver::report_lost() {
@@ -40,11 +55,8 @@ bool SphSolver::check_state(double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] == kWallByte) continue;
     const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
-    const bool shifts = shifting && s.kind[i] == kFluidByte;  // sx, sy: fluid particles only
-    const double tx = s.vx[i] + (shifts ? s.sx[i] : 0.0), ty = s.vy[i] + (shifts ? s.sy[i] : 0.0);
-    const double t2 = tx * tx + ty * ty;  // transport velocity (how far particles move)
-    const bool finite = std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&
-                        std::isfinite(s.rho[i]) && std::isfinite(s.c[i]);
+    const double t2 = transport_speed2(s, i, shifting);
+    const bool finite = finite_state(s, i, t2);
     bad += finite ? 0 : 1;
     vmax2 = std::max(vmax2, finite ? v2 : 0.0);
     tmax2 = std::max(tmax2, finite ? t2 : 0.0);
@@ -75,10 +87,7 @@ bool SphSolver::check_state(double dt) {
     double value = 0.0;
     switch (kind) {
       case FailureKind::non_finite:
-        value = (std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(v2) &&
-                 std::isfinite(s.rho[i]) && std::isfinite(s.c[i]))
-                    ? 0.0
-                    : 1.0;
+        value = finite_state(s, i, transport_speed2(s, i, shifting)) ? 0.0 : 1.0;
         break;
       case FailureKind::speed:
         value = std::sqrt(v2);
