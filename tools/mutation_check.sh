@@ -44,7 +44,8 @@ for m in "${mutations[@]}"; do
   else
     failed=$(grep -oE '[0-9]+ FAILED TESTS?' "$work/test.log" | grep -oE '^[0-9]+' || echo "?")
     echo "caught       $what: $failed of the tests $filter fail"
-    grep -m2 -E 'Expected|Which is|error:' "$work/test.log" | sed 's/^/               /' || true
+    grep -m2 -E 'Expected|Which is|difference between|error:' "$work/test.log" |
+      sed 's/^/               /' || true
   fi
   mv "$work/$file.orig" "$work/$file"
 done
