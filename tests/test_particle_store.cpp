@@ -19,9 +19,9 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
   for (std::size_t i = 0; i < n; ++i) s.push_back(0.0, 0.0, 0.0, 0.0, 1.0, 0.0, Kind::fluid);
   // A value that names the particle (its index) in every carried array.
   std::size_t fields = 0;
-  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role) {
+  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role, const char*) {
     EXPECT_EQ(a.size(), n + 1);  // the padding particle too
-    if (role != ParticleStore::Role::carried) return;
+    if (!ParticleStore::carried(role)) return;
     ++fields;
     using T = typename std::decay_t<decltype(a)>::value_type;
     for (std::size_t i = 0; i < n; ++i) a[i] = static_cast<T>(i);
@@ -29,8 +29,8 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
   // What a particle carries between steps: its state, its kind, and what derives from the kind
   // or is read before it is recomputed (p, V at the first evaluation after a re-sort).
   std::set<const void*> carried;
-  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role) {
-    if (role == ParticleStore::Role::carried) carried.insert(&a);
+  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role, const char*) {
+    if (ParticleStore::carried(role)) carried.insert(&a);
   });
   for (const void* a :
        {static_cast<const void*>(&s.x), static_cast<const void*>(&s.y),
@@ -47,9 +47,9 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
     if (i % 2 == 0) order.push_back(static_cast<std::uint32_t>(i));
   s.permute(order);
   ASSERT_EQ(s.size(), order.size());
-  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role) {
+  ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role, const char*) {
     EXPECT_EQ(a.size(), order.size() + 1);
-    if (role != ParticleStore::Role::carried) return;
+    if (!ParticleStore::carried(role)) return;
     using T = typename std::decay_t<decltype(a)>::value_type;
     for (std::size_t k = 0; k < order.size(); ++k) {
       const std::size_t i = order[k];

@@ -18,11 +18,20 @@
 
 namespace adrsph {
 
+// Particle arrays by name, in store order: the particle store's `state` fields (its field
+// list, src/particles/particle_store.hpp: x, y, vx, vy, rho, c, kind, p, vol), so a new state
+// field is checkpointed without an edit here or in the file format.
+template <class T>
+using NamedArrays = std::vector<std::pair<std::string, std::vector<T>>>;
+struct ParticleArrays {
+  NamedArrays<double> f64;
+  NamedArrays<float> f32;
+  NamedArrays<std::uint8_t> u8;
+};
+
 // The solver: particle state (in store order) and every counter that the run reports.
 struct SolverSnapshot {
-  std::vector<double> x, y, vx, vy, rho, c;
-  std::vector<float> p, vol;  // derived, but kept: new inlet particles carry them unset
-  std::vector<std::uint8_t> kind;
+  ParticleArrays particles;
   std::vector<double> inflow_row_tail;  // x of the most upstream inlet particle of each row
   double t = 0.0;
   long steps = 0, lost = 0, lost_reported = 0, rebuilds = 0;

@@ -1,7 +1,9 @@
 // Checkpoint/restart of the solver (adrsph/checkpoint.hpp): the state a snapshot keeps and
 // how restore() rebuilds the rest from it.
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "integrator/sph_solver.hpp"
 
@@ -10,16 +12,19 @@ namespace adrsph {
 SolverSnapshot SphSolver::snapshot() const {
   const std::size_t n = store_.size();
   SolverSnapshot s;
-  auto copy = [n](const auto& a) { return std::vector(a.begin(), a.begin() + n); };
-  s.x = copy(store_.x);
-  s.y = copy(store_.y);
-  s.vx = copy(store_.vx);
-  s.vy = copy(store_.vy);
-  s.rho = copy(store_.rho);
-  s.c = copy(store_.c);
-  s.p = copy(store_.p);
-  s.vol = copy(store_.vol);
-  s.kind = copy(store_.kind);
+  // The state fields of the store's field list, by name (checkpoint.hpp).
+  ParticleStore::for_each_field(
+      store_, [&](const auto& a, ParticleStore::Role role, const char* name) {
+        if (role != ParticleStore::Role::state) return;
+        using T = typename std::decay_t<decltype(a)>::value_type;
+        std::vector<T> copy(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(n));
+        if constexpr (std::is_same_v<T, double>)
+          s.particles.f64.emplace_back(name, std::move(copy));
+        else if constexpr (std::is_same_v<T, float>)
+          s.particles.f32.emplace_back(name, std::move(copy));
+        else
+          s.particles.u8.emplace_back(name, std::move(copy));
+      });
   s.inflow_row_tail = scene_.inflow_row_tails();
   s.t = t_;
   s.steps = steps_;
@@ -35,24 +40,38 @@ SolverSnapshot SphSolver::snapshot() const {
 }
 
 void SphSolver::restore(const SolverSnapshot& s) {
-  const std::size_t n = s.x.size();
-  for (std::size_t len : {s.y.size(), s.vx.size(), s.vy.size(), s.rho.size(), s.c.size(),
-                          s.p.size(), s.vol.size(), s.kind.size()})
-    if (len != n) throw std::invalid_argument("checkpoint particle arrays differ in length");
+  // Each state field of the store from the snapshot's array of its name and type.
+  auto find = [](const auto& named, const char* name) -> decltype(&named.front().second) {
+    for (const auto& [key, values] : named)
+      if (key == name) return &values;
+    return nullptr;
+  };
+  std::size_t n = 0;
+  bool first = true;
+  ParticleStore::for_each_field(store_, [&](auto& a, ParticleStore::Role role, const char* name) {
+    if (role != ParticleStore::Role::state) return;
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    const std::vector<T>* v = nullptr;
+    if constexpr (std::is_same_v<T, double>)
+      v = find(s.particles.f64, name);
+    else if constexpr (std::is_same_v<T, float>)
+      v = find(s.particles.f32, name);
+    else
+      v = find(s.particles.u8, name);
+    if (!v) throw std::invalid_argument(std::string("checkpoint has no particle array ") + name);
+    if (first) {
+      n = v->size();
+      first = false;
+      store_.resize(n);
+    }
+    if (v->size() != n) throw std::invalid_argument("checkpoint particle arrays differ in length");
+    std::copy(v->begin(), v->end(), a.begin());
+  });
   scene_.set_inflow_row_tails(s.inflow_row_tail);
-  store_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (s.kind[i] > kOutletByte)
+    if (store_.kind[i] > kOutletByte)
       throw std::invalid_argument("checkpoint particle kind out of range");
-    store_.x[i] = s.x[i];
-    store_.y[i] = s.y[i];
-    store_.vx[i] = s.vx[i];
-    store_.vy[i] = s.vy[i];
-    store_.rho[i] = s.rho[i];
-    store_.c[i] = s.c[i];
-    store_.p[i] = s.p[i];
-    store_.vol[i] = s.vol[i];
-    store_.set_kind(i, static_cast<Kind>(s.kind[i]));
+    store_.set_kind(i, static_cast<Kind>(store_.kind[i]));  // the derived masks
     if (store_.needs().shifting) store_.sx[i] = store_.sy[i] = 0.0f;
   }
   // The particles were saved in cell order right after a rebuild: the stable sort keeps

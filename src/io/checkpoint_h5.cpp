@@ -5,9 +5,11 @@
 #include <span>
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
 #include <utility>
 
 #include "io/h5_arrays.hpp"
+#include "particles/particle_store.hpp"
 
 namespace adrsph {
 namespace {
@@ -100,16 +102,8 @@ ProbeTable unflatten(const std::vector<double>& v, const std::string& file) {
 template <class T>
 using Array = std::vector<T> SolverSnapshot::*;
 constexpr std::pair<const char*, Array<double>> kSolverDoubles[] = {
-    {"x", &SolverSnapshot::x},
-    {"y", &SolverSnapshot::y},
-    {"vx", &SolverSnapshot::vx},
-    {"vy", &SolverSnapshot::vy},
-    {"rho", &SolverSnapshot::rho},
-    {"c", &SolverSnapshot::c},
     {"inflow_row_tail", &SolverSnapshot::inflow_row_tail},
     {"phase_seconds", &SolverSnapshot::phase_seconds}};
-constexpr std::pair<const char*, Array<float>> kSolverFloats[] = {{"p", &SolverSnapshot::p},
-                                                                  {"vol", &SolverSnapshot::vol}};
 constexpr std::pair<const char*, double SolverSnapshot::*> kSolverScalars[] = {
     {"t", &SolverSnapshot::t}, {"particle_steps", &SolverSnapshot::particle_steps}};
 constexpr std::pair<const char*, long SolverSnapshot::*> kSolverCounters[] = {
@@ -123,11 +117,13 @@ constexpr std::pair<const char*, long SolverSnapshot::*> kSolverCounters[] = {
 void write_solver(hid_t root, const SolverSnapshot& s, const std::string& file) {
   const auto g = create_group(root, "solver", file);
   const hid_t id = g.get();
+  // The particle arrays under their store names (/solver/x, /solver/kind, ...).
+  for (const auto& [name, v] : s.particles.f64) put(id, name.c_str(), v, file);
+  for (const auto& [name, v] : s.particles.f32) put(id, name.c_str(), v, file);
+  for (const auto& [name, v] : s.particles.u8) put(id, name.c_str(), v, file);
   for (const auto& [name, field] : kSolverDoubles) put(id, name, s.*field, file);
-  for (const auto& [name, field] : kSolverFloats) put(id, name, s.*field, file);
   for (const auto& [name, field] : kSolverScalars) write_attribute(id, name, s.*field, file);
   for (const auto& [name, field] : kSolverCounters) put_long(id, name, s.*field, file);
-  put(id, "kind", s.kind, file);
   put(id, "ledger", std::vector<double>(s.ledger.begin(), s.ledger.end()), file);
 }
 
@@ -136,12 +132,23 @@ SolverSnapshot read_solver(hid_t root, const std::string& file) {
   const hid_t id = g.get();
   const char* grp = "solver";
   SolverSnapshot s;
+  // The particle arrays the store's field list names as state (checkpoint.hpp).
+  ParticleStore layout;  // empty: only its field list is read
+  ParticleStore::for_each_field(layout, [&](auto& a, ParticleStore::Role role, const char* name) {
+    if (role != ParticleStore::Role::state) return;
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    auto values = get<T>(id, grp, name, file);
+    if constexpr (std::is_same_v<T, double>)
+      s.particles.f64.emplace_back(name, std::move(values));
+    else if constexpr (std::is_same_v<T, float>)
+      s.particles.f32.emplace_back(name, std::move(values));
+    else
+      s.particles.u8.emplace_back(name, std::move(values));
+  });
   for (const auto& [name, field] : kSolverDoubles) s.*field = get<double>(id, grp, name, file);
-  for (const auto& [name, field] : kSolverFloats) s.*field = get<float>(id, grp, name, file);
   for (const auto& [name, field] : kSolverScalars)
     s.*field = read_attribute<double>(id, name, file);
   for (const auto& [name, field] : kSolverCounters) s.*field = get_long(id, name, file);
-  s.kind = get<std::uint8_t>(id, grp, "kind", file);
   const auto ledger = get<double>(id, grp, "ledger", file);
   if (ledger.size() != s.ledger.size())
     throw std::runtime_error(file + ": malformed /solver/ledger");

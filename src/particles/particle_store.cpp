@@ -16,7 +16,7 @@ void permute_array(std::vector<T>& a, std::span<const std::uint32_t> order, std:
 }  // namespace
 
 void ParticleStore::reserve(std::size_t n) {
-  for_each_field(*this, [n](auto& a, Role) { a.reserve(n + 1); });
+  for_each_field(*this, [n](auto& a, Role, const char*) { a.reserve(n + 1); });
   scratch_.reserve(n + 1);
   scratch_f_.reserve(n + 1);
   scratch_k_.reserve(n + 1);
@@ -24,7 +24,7 @@ void ParticleStore::reserve(std::size_t n) {
 
 std::size_t ParticleStore::bytes() const {
   std::size_t total = 0;
-  auto add = [&total](const auto& a, Role) {
+  auto add = [&total](const auto& a, Role, const char* = nullptr) {
     total += a.capacity() * sizeof(typename std::decay_t<decltype(a)>::value_type);
   };
   for_each_field(*this, add);
@@ -37,7 +37,7 @@ std::size_t ParticleStore::bytes() const {
 void ParticleStore::resize(std::size_t n) {
   if (n + 1 > x.capacity()) reserve(n + n / 32 + 64);
   n_ = n;
-  for_each_field(*this, [n](auto& a, Role) { a.resize(n + 1); });
+  for_each_field(*this, [n](auto& a, Role, const char*) { a.resize(n + 1); });
   reset_padding();
 }
 
@@ -87,8 +87,8 @@ void ParticleStore::permute(std::span<const std::uint32_t> order) {
   scratch_f_.reserve(cap);
   scratch_k_.reserve(cap);
   n_ = order.size();
-  for_each_field(*this, [&](auto& a, Role role) {
-    if (role == Role::per_step) {
+  for_each_field(*this, [&](auto& a, Role role, const char*) {
+    if (!carried(role)) {
       a.resize(n_ + 1);
       return;
     }

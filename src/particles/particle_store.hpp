@@ -73,24 +73,30 @@ struct ParticleStore {
     for_each_start_pair(*this, [i](auto& now, auto& start) { now[i] = start[i]; });
   }
 
-  // The field list: every array of the store the scheme needs, once. reserve, resize, bytes
-  // and permute are derived from it, so a new field is one line here. `carried` arrays follow
-  // their particle through a re-sort; the others are rewritten every evaluation or step
-  // before they are read, so a re-sort only sizes them. Arrays of needs switched off are not
-  // visited: they stay empty.
-  enum class Role { carried, per_step };
+  // The field list: every array of the store the scheme needs, once, with its name.
+  // reserve, resize, bytes, permute and the checkpoint (snapshot, restore and the file's
+  // datasets, which take these names) are derived from it, so a new field is one line here.
+  //   state     follows its particle through a re-sort and is kept in checkpoints;
+  //   derived   follows its particle, and is set again from the state (the masks, from kind);
+  //   per_step  rewritten every evaluation or step before it is read: a re-sort only sizes it.
+  // Arrays of needs switched off are not visited: they stay empty.
+  enum class Role { state, derived, per_step };
+  static constexpr bool carried(Role r) { return r != Role::per_step; }
   template <class Store, class Visit>
   static void for_each_field(Store& s, Visit&& visit) {
-    constexpr Role carried = Role::carried, per_step = Role::per_step;
-    visit(s.x, carried), visit(s.y, carried), visit(s.vx, carried), visit(s.vy, carried);
-    visit(s.rho, carried), visit(s.c, carried), visit(s.kind, carried);
-    visit(s.p, carried), visit(s.vol, carried);
-    visit(s.diffusion_mask, carried), visit(s.fluid_side, carried);
-    visit(s.dc, per_step);
-    if (s.needs_.momentum) visit(s.ax, per_step), visit(s.ay, per_step);
-    if (s.needs_.continuity) visit(s.drho, per_step);
-    if (s.needs_.shifting) visit(s.sx, per_step), visit(s.sy, per_step);
-    for_each_start_pair(s, [&](auto&, auto& start) { visit(start, per_step); });
+    constexpr Role state = Role::state, derived = Role::derived, per_step = Role::per_step;
+    visit(s.x, state, "x"), visit(s.y, state, "y"), visit(s.vx, state, "vx");
+    visit(s.vy, state, "vy"), visit(s.rho, state, "rho"), visit(s.c, state, "c");
+    visit(s.kind, state, "kind");
+    // p and V are recomputed every evaluation but read before that by particles that have
+    // just entered the fluid: kept.
+    visit(s.p, state, "p"), visit(s.vol, state, "vol");
+    visit(s.diffusion_mask, derived, "diffusion_mask"), visit(s.fluid_side, derived, "fluid_side");
+    visit(s.dc, per_step, "dc");
+    if (s.needs_.momentum) visit(s.ax, per_step, "ax"), visit(s.ay, per_step, "ay");
+    if (s.needs_.continuity) visit(s.drho, per_step, "drho");
+    if (s.needs_.shifting) visit(s.sx, per_step, "sx"), visit(s.sy, per_step, "sy");
+    for_each_start_pair(s, [&](auto&, auto& start) { visit(start, per_step, "start"); });
   }
   // The state the explicit midpoint saves at the start of a step, with its copy: positions
   // and C always, the velocity when the momentum equation moves it, the density when the

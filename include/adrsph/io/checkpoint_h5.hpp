@@ -2,8 +2,9 @@
 // `adrsph run --restart DIR` can continue it. Layout:
 //   /case     uint8 datasets case_text (the case file as it was read), case_file (its path),
 //             overrides (the --set values, one per line); attribute threads
-//   /solver   particle arrays x, y, vx, vy, rho, c (double), p, vol (float), kind (uint8),
-//             inflow_row_tail; counters and the species ledger as attributes; phase_seconds
+//   /solver   the particle store's state arrays under their names in its field list
+//             (x, y, vx, vy, rho, c double; p, vol float; kind uint8), inflow_row_tail;
+//             counters and the species ledger as attributes; phase_seconds
 //   /run      steady-test samples, history, average window, check clock, wall times, warm
 //             start, restarts, peak RSS
 #pragma once
