@@ -55,15 +55,11 @@ void ParticleStore::set_needs(Needs n) {
 
 void ParticleStore::reset_padding() {
   const std::size_t k = n_;
+  // Zero in every field (no volume, no species, masks off), then:
+  for_each_field(*this, [k](auto& a, Role, const char*) { a[k] = {}; });
   x[k] = y[k] = 1e12;  // far beyond any support: W = grad W = 0 for every pair with it
-  vx[k] = vy[k] = 0.0;
   rho[k] = 1.0;
-  c[k] = 0.0;
   kind[k] = kWallByte;
-  p[k] = 0.0f;
-  vol[k] = 0.0f;
-  diffusion_mask[k] = 0.0f;
-  fluid_side[k] = 0.0f;
 }
 
 void ParticleStore::push_back(double px, double py, double pvx, double pvy, double prho, double pc,
