@@ -59,6 +59,24 @@ TEST(Kernel, GradientMatchesFiniteDifference) {
   }
 }
 
+TEST(Kernel, LaplacianWeightSpellingsAgree) {
+  // The weight of eqs. 7, 8 and 12 as the sub-cycler, the balance and the tests take it, and
+  // as the fused pass takes it with its shared division (quintic_kernel.hpp).
+  const QuinticKernel w(kDx);
+  const double eta2 = 0.01 * kDx * kDx, s = 2.4;
+  for (double r : {0.05 * kDx, 0.5 * kDx, 1.0 * kDx, 1.7 * kDx, 2.5 * kDx, 2.95 * kDx}) {
+    const double r2 = r * r, plain = w.laplacian_weight(r2, eta2);
+    const double inv = 1.0 / (r * (r2 + eta2) * s);
+    EXPECT_NEAR(QuinticKernel::laplacian_weight_shared(w.derivative(r), r2, inv, s), plain,
+                1e-12 * std::fabs(plain));
+    const float fr = static_cast<float>(r), fr2 = fr * fr;
+    const float finv = 1.0f / (fr * (fr2 + static_cast<float>(eta2)) * static_cast<float>(s));
+    EXPECT_NEAR(QuinticKernel::laplacian_weight_shared(w.derivative<float>(fr), fr2, finv,
+                                                       static_cast<float>(s)),
+                plain, 1e-5 * std::fabs(plain));
+  }
+}
+
 TEST(Operators, GradientOfLinearField) {
   // grad f_i = sum_j V_j (f_j - f_i) grad_i W_ij, f = 3x - 2y.
   const QuinticKernel w(kDx);

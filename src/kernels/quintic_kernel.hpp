@@ -53,11 +53,18 @@ struct QuinticKernel {
 
   // (r_ij . grad_i W_ij) / (r_ij^2 + eta^2) = (dW/dr) r / (r^2 + eta^2) at r^2 = r2: the
   // Laplacian weight of the viscous term (eq. 7), the density diffusion (eq. 8) and the species
-  // diffusion (eq. 12). The fused force pass computes the same expression with one division
-  // shared with its other factors (interaction_pass.hpp); every other caller uses this.
+  // diffusion (eq. 12). The two functions below are its two spellings, kept together: a change
+  // of the weight is an edit here, and Kernel.LaplacianWeightSpellingsAgree fails if they part.
   double laplacian_weight(double r2, double eta2) const {
     const double r = std::sqrt(r2);
     return derivative(r) * r / (r2 + eta2);
+  }
+  // The same weight in the fused force pass (interaction_pass.hpp), which shares one division
+  // between its factors: inv = 1 / (r (r^2 + eta^2) s), where s (the pair's density sum there)
+  // cancels. dwdr = derivative(r).
+  template <class T>
+  static T laplacian_weight_shared(T dwdr, T r2, T inv, T s) {
+    return dwdr * r2 * inv * s;
   }
 };
 

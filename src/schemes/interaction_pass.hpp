@@ -81,9 +81,9 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       const real rho_sum = Scheme::momentum ? rhoi + static_cast<real>(rho[j]) : real(1);
       const real inv = real(1) / (r * reg * rho_sum);
       const real dwdr = kernel.derivative<real>(r);
-      const real f = dwdr * inv * reg * rho_sum;          // (dW/dr) / r
-      const real gwx = f * dx, gwy = f * dy;              // grad_i W_ij
-      const real lap_weight = dwdr * r2 * inv * rho_sum;  // (r_ij . grad W_ij) / (r_ij^2 + eta^2)
+      const real f = dwdr * inv * reg * rho_sum;  // (dW/dr) / r
+      const real gwx = f * dx, gwy = f * dy;      // grad_i W_ij
+      const real lap_weight = QuinticKernel::laplacian_weight_shared(dwdr, r2, inv, rho_sum);
       const real volj = vol[j];
       const real uxij = static_cast<real>(vxi - vx[j]), uyij = static_cast<real>(vyi - vy[j]);
       const real u_dot_gradw = uxij * gwx + uyij * gwy;
