@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -27,6 +28,20 @@ struct ParticleArrays {
   NamedArrays<double> f64;
   NamedArrays<float> f32;
   NamedArrays<std::uint8_t> u8;
+  // The arrays of element type T (double, float or std::uint8_t).
+  template <class T>
+  NamedArrays<T>& of() {
+    if constexpr (std::is_same_v<T, double>)
+      return f64;
+    else if constexpr (std::is_same_v<T, float>)
+      return f32;
+    else
+      return u8;
+  }
+  template <class T>
+  const NamedArrays<T>& of() const {
+    return const_cast<ParticleArrays*>(this)->of<T>();
+  }
 };
 
 // The solver: particle state (in store order) and every counter that the run reports.

@@ -17,13 +17,8 @@ SolverSnapshot SphSolver::snapshot() const {
       store_, [&](const auto& a, ParticleStore::Role role, const char* name) {
         if (role != ParticleStore::Role::state) return;
         using T = typename std::decay_t<decltype(a)>::value_type;
-        std::vector<T> copy(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(n));
-        if constexpr (std::is_same_v<T, double>)
-          s.particles.f64.emplace_back(name, std::move(copy));
-        else if constexpr (std::is_same_v<T, float>)
-          s.particles.f32.emplace_back(name, std::move(copy));
-        else
-          s.particles.u8.emplace_back(name, std::move(copy));
+        s.particles.of<T>().emplace_back(
+            name, std::vector<T>(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(n)));
       });
   s.inflow_row_tail = scene_.inflow_row_tails();
   s.t = t_;
@@ -41,23 +36,14 @@ SolverSnapshot SphSolver::snapshot() const {
 
 void SphSolver::restore(const SolverSnapshot& s) {
   // Each state field of the store from the snapshot's array of its name and type.
-  auto find = [](const auto& named, const char* name) -> decltype(&named.front().second) {
-    for (const auto& [key, values] : named)
-      if (key == name) return &values;
-    return nullptr;
-  };
   std::size_t n = 0;
   bool first = true;
   ParticleStore::for_each_field(store_, [&](auto& a, ParticleStore::Role role, const char* name) {
     if (role != ParticleStore::Role::state) return;
     using T = typename std::decay_t<decltype(a)>::value_type;
     const std::vector<T>* v = nullptr;
-    if constexpr (std::is_same_v<T, double>)
-      v = find(s.particles.f64, name);
-    else if constexpr (std::is_same_v<T, float>)
-      v = find(s.particles.f32, name);
-    else
-      v = find(s.particles.u8, name);
+    for (const auto& [key, values] : s.particles.of<T>())
+      if (key == name) v = &values;
     if (!v) throw std::invalid_argument(std::string("checkpoint has no particle array ") + name);
     if (first) {
       n = v->size();

@@ -137,13 +137,7 @@ SolverSnapshot read_solver(hid_t root, const std::string& file) {
   ParticleStore::for_each_field(layout, [&](auto& a, ParticleStore::Role role, const char* name) {
     if (role != ParticleStore::Role::state) return;
     using T = typename std::decay_t<decltype(a)>::value_type;
-    auto values = get<T>(id, grp, name, file);
-    if constexpr (std::is_same_v<T, double>)
-      s.particles.f64.emplace_back(name, std::move(values));
-    else if constexpr (std::is_same_v<T, float>)
-      s.particles.f32.emplace_back(name, std::move(values));
-    else
-      s.particles.u8.emplace_back(name, std::move(values));
+    s.particles.of<T>().emplace_back(name, get<T>(id, grp, name, file));
   });
   for (const auto& [name, field] : kSolverDoubles) s.*field = get<double>(id, grp, name, file);
   for (const auto& [name, field] : kSolverScalars)
