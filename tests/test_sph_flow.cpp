@@ -96,32 +96,6 @@ TEST(Flow, ConventionalPredictedDensityIsTheSummationDensity) {
 // Watching a run does not change it: sampling the probes reads the particles on the grid of
 // the last sort and never re-sorts them, so a run sampled every step ends bit for bit where
 // an unobserved one does, with the same list rebuilds.
-TEST(Flow, OutletVelocityFromTheFluidOrFrozen) {
-  // particles.outlet_velocity: "fluid" gives an outflow-buffer particle within reach of the
-  // fluid the Shepard average of the fluid velocities around it; "frozen" leaves it as it was.
-  // Test: a uniform transverse velocity put into the fluid shows up in the buffer, or not.
-  for (const OutletVelocity mode : {OutletVelocity::fluid, OutletVelocity::frozen}) {
-    Case c = testing::short_channel(Scheme::conventional, Flow::wcsph, 20.0);
-    c.particles.outlet_velocity = mode;
-    SphSolver solver(c);
-    ParticleStore& s = solver.particles();
-    const double v_fluid = 0.1 * c.u_max();
-    for (std::size_t i = 0; i < s.size(); ++i)
-      if (s.kind[i] == kFluidByte) s.vy[i] = v_fluid;
-    solver.evaluate();
-    int near = 0;  // outlet particles within one dx of the outlet plane
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      if (s.kind[i] != kOutletByte || s.x[i] > c.geometry.length + c.particles.dx) continue;
-      ++near;
-      if (mode == OutletVelocity::fluid)
-        EXPECT_NEAR(s.vy[i], v_fluid, 1e-12 * v_fluid) << "particle " << i;
-      else
-        EXPECT_EQ(s.vy[i], 0.0) << "particle " << i;
-    }
-    EXPECT_GT(near, 10);
-  }
-}
-
 TEST(Flow, WatchingDoesNotChangeTheRun) {
   Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 10.0);
   SphSolver watched(c), alone(c);

@@ -12,9 +12,6 @@ namespace adrsph {
 
 enum class Scheme { modern, conventional };
 enum class Flow { wcsph, prescribed };
-// The velocity of an outflow-buffer particle: the one it crossed x = L with, kept (frozen), or
-// the Shepard average of the fluid particles within its support, every evaluation (fluid).
-enum class OutletVelocity { frozen, fluid };
 
 struct Case {
   std::string name;                // `name`
@@ -34,7 +31,6 @@ struct Case {
     int outlet_layers = 4;  // `particles.outlet_layers`, outflow buffer depth in dx
     double skin = 0.05;     // `particles.skin`, neighbour-list skin as a fraction of 3h
     double jitter = 0.0;    // `particles.jitter`, random start offsets of the fluid, fraction of dx
-    OutletVelocity outlet_velocity = OutletVelocity::frozen;  // `particles.outlet_velocity`
     // The skin when a prescribed-flow case does not set one. Its particles move exactly with
     // u(y), so nothing but the list limits their step, and at the default Courant number
     // (0.25) a 0.05 skin is used up every step: lists were rebuilt every step, 63% of the
@@ -126,6 +122,5 @@ void validate_case(const Case& c);
 
 const char* to_string(Scheme s);
 const char* to_string(Flow f);
-const char* to_string(OutletVelocity v);
 
 }  // namespace adrsph

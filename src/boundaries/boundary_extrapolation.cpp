@@ -1,7 +1,5 @@
 #include "boundaries/boundary_extrapolation.hpp"
 
-#include <cmath>
-
 namespace adrsph {
 
 void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
@@ -17,34 +15,13 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
   const TaitEos eos = ctx.phys.eos;
   const QuinticKernel kernel = ctx.kernel;  // local copies: see interaction_pass.hpp
   const double mass = s.mass;
-  // Outlet first: the walls below sample it (pressure reference at the outlet). With
-  // particles.outlet_velocity = "fluid" its velocity is the Shepard average of the fluid
-  // particles within its support (fluid only: diffusion_mask * fluid_side, no buffer sampling
-  // the buffer), kept when there are none; it reads only fluid velocities, which this pass
-  // does not write.
-  const float* dmask = s.diffusion_mask.data();
-  const bool from_fluid = ctx.phys.outlet_from_fluid;
+  // Outlet first: the walls below sample it (pressure reference at the outlet).
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (kind[i] != kOutletByte) continue;
     s.p[i] = static_cast<float>(eos.p_background);
     s.rho[i] = eos.rho0;
     s.vol[i] = static_cast<float>(mass / eos.rho0);
-    if (!from_fluid) continue;
-    const double xi = x[i], yi = y[i];
-    double sw = 0.0, su = 0.0, sv = 0.0;
-    for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
-      const std::uint32_t j = nb[k];
-      if (dmask[j] * side[j] <= 0.0f) continue;  // fluid neighbours only
-      const double w = kernel.value(std::hypot(xi - x[j], yi - y[j]));
-      sw += w;
-      su += w * vx[j];
-      sv += w * vy[j];
-    }
-    if (sw > 0.0) {
-      s.vx[i] = su / sw;
-      s.vy[i] = sv / sw;
-    }
   }
   // Walls and inlet read only fluid and outlet particles (fluid_side = 1) and write only their
   // own p, rho, V and wall velocity. The reads of a neighbour's p and velocity are behind the

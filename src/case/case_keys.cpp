@@ -129,9 +129,6 @@ std::vector<KeyDef> make_keys() {
                              [](Case& c) -> Scheme& { return c.scheme; }));
   k.push_back(
       choice<Flow>("flow", {"wcsph", "prescribed"}, [](Case& c) -> Flow& { return c.flow; }));
-  k.push_back(choice<OutletVelocity>(
-      "particles.outlet_velocity", {"frozen", "fluid"},
-      [](Case& c) -> OutletVelocity& { return c.particles.outlet_velocity; }));
 
   k.push_back(number(
       "geometry.length", [](Case & c) -> auto& { return c.geometry.length; }));

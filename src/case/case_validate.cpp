@@ -191,8 +191,5 @@ const char* to_string(Scheme s) {
 const char* to_string(Flow f) {
   return f == Flow::wcsph ? "wcsph" : "prescribed";
 }
-const char* to_string(OutletVelocity v) {
-  return v == OutletVelocity::frozen ? "frozen" : "fluid";
-}
 
 }  // namespace adrsph

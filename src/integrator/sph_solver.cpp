@@ -27,7 +27,6 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
   phys_.eos.p_background = c.scheme == Scheme::conventional
                                ? c.fluid.background_pressure * c.fluid.rho0 * c.c0() * c.c0()
                                : 0.0;
-  phys_.outlet_from_fluid = c.particles.outlet_velocity == OutletVelocity::fluid;
   limits_ = time_step_limits(c);
 
   skin_ = c.particles.skin * kernel_.support;

@@ -16,8 +16,7 @@ struct PhysicsConstants {
   double delta_h_c0_2 = 0.0;  // 2 delta h c0, eq. (8)
   double diffusivity = 0.0;   // D
   TaitEos eos;
-  ShiftingVelocity shifting;       // set per step (depends on dt)
-  bool outlet_from_fluid = false;  // particles.outlet_velocity = "fluid" (boundary_extrapolation)
+  ShiftingVelocity shifting;  // set per step (depends on dt)
 };
 
 // Conventional scheme: the force pass also sums the kernel at the positions the integrator
