@@ -3,6 +3,7 @@
 // mol/m^3 for C. See cases/README.md for every key.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,9 @@ namespace adrsph {
 
 enum class Scheme { modern, conventional };
 enum class Flow { wcsph, prescribed };
+// The inlet concentration in time (`species.feed.shape`): c_in throughout, a step from `base`
+// to c_in at t0, a pulse of c_in over [t0, t0 + width) on `base`, or a table of (t, C) points.
+enum class FeedShape { constant, step, pulse, table };
 
 struct Case {
   std::string name;                // `name`
@@ -55,6 +59,14 @@ struct Case {
     double c_in = 2.0;    // `species.c_in` [mol/m^3], inlet concentration
     double c_init = 2.0;  // `species.c_init` [mol/m^3], initial concentration
     bool ale = false;     // `species.ale`, add du . grad C (consistent ALE form, modern only)
+    // `[species.feed]`: the inlet concentration as a function of time (species/inlet_feed.hpp).
+    struct Feed {
+      FeedShape shape = FeedShape::constant;  // `species.feed.shape`
+      double t0 = 0.0;                        // `species.feed.t0` [s], step instant or pulse start
+      double width = 0.0;                     // `species.feed.width` [s], pulse width
+      double base = 0.0;  // `species.feed.base` [mol/m^3], inlet C before the step, off the pulse
+      std::vector<std::array<double, 2>> table;  // `species.feed.table`, [[t, C], ...]
+    } feed;
   } species;
 
   struct Modern {
@@ -86,6 +98,9 @@ struct Case {
     std::vector<double> field_times;  // `output.field_times` [s]; the final state is always written
     bool progress = true;             // `output.progress`, progress on stderr (see cases/README.md)
     double checkpoint_minutes = 10.0;  // `output.checkpoint_minutes` [min] of wall time; 0 = never
+    // `output.outlet_interval` [s]: sample the outlet (flow-weighted mean C at x = L) into
+    // outlet.csv this often; 0 = not written (the residence-time distribution reads it).
+    double outlet_interval = 0.0;
   } output;
 
   double u_max() const { return 2.0 * fluid.u_bulk; }
@@ -122,5 +137,6 @@ void validate_case(const Case& c);
 
 const char* to_string(Scheme s);
 const char* to_string(Flow f);
+const char* to_string(FeedShape f);
 
 }  // namespace adrsph

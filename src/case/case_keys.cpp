@@ -1,6 +1,7 @@
 // The key table: one line per case-file key, with a typed reader for each kind of value.
 #include "case/case_keys.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -67,6 +68,29 @@ std::vector<double> read_number_list(const toml::node& n, const ValueSource& src
     item.key = src.key + "[" + std::to_string(i) + "]";
     item.raw.reset();
     out.push_back(read_number(*a->get(i), item));
+  }
+  return out;
+}
+
+// [[t, C], ...]: pairs of numbers.
+std::vector<std::array<double, 2>> read_pair_list(const toml::node& n, const ValueSource& src) {
+  const auto* a = n.as_array();
+  const std::string example = "an array of [t, C] pairs, e.g. [[0.0, 0.0], [0.1, 2.0]]";
+  if (!a) fail(src, example, n);
+  std::vector<std::array<double, 2>> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    ValueSource item = src;
+    item.key = src.key + "[" + std::to_string(i) + "]";
+    item.raw.reset();
+    const auto* pair = a->get(i)->as_array();
+    if (!pair || pair->size() != 2) fail(item, "a pair [t, C] of two numbers", *a->get(i));
+    std::array<double, 2> v{};
+    for (std::size_t j = 0; j < 2; ++j) {
+      ValueSource part = item;
+      part.key = item.key + "[" + std::to_string(j) + "]";
+      v[j] = read_number(*pair->get(j), part);
+    }
+    out.push_back(v);
   }
   return out;
 }
@@ -171,6 +195,19 @@ std::vector<KeyDef> make_keys() {
       "species.c_init", [](Case & c) -> auto& { return c.species.c_init; }));
   k.push_back(boolean(
       "species.ale", [](Case & c) -> auto& { return c.species.ale; }));
+  // The enum order must match FeedShape in case.hpp.
+  k.push_back(choice<FeedShape>("species.feed.shape", {"constant", "step", "pulse", "table"},
+                                [](Case& c) -> FeedShape& { return c.species.feed.shape; }));
+  k.push_back(number(
+      "species.feed.t0", [](Case & c) -> auto& { return c.species.feed.t0; }));
+  k.push_back(number(
+      "species.feed.width", [](Case & c) -> auto& { return c.species.feed.width; }));
+  k.push_back(number(
+      "species.feed.base", [](Case & c) -> auto& { return c.species.feed.base; }));
+  k.push_back({"species.feed.table", "an array of [t, C] pairs",
+               [](Case& c, const toml::node& n, const ValueSource& s) {
+                 c.species.feed.table = read_pair_list(n, s);
+               }});
 
   k.push_back(number(
       "modern.delta", [](Case & c) -> auto& { return c.modern.delta; }));
@@ -216,6 +253,8 @@ std::vector<KeyDef> make_keys() {
       "output.progress", [](Case & c) -> auto& { return c.output.progress; }));
   k.push_back(number(
       "output.checkpoint_minutes", [](Case & c) -> auto& { return c.output.checkpoint_minutes; }));
+  k.push_back(number(
+      "output.outlet_interval", [](Case & c) -> auto& { return c.output.outlet_interval; }));
   return k;
 }
 
@@ -263,7 +302,9 @@ const KeyDef* find_key(const std::string& dotted) {
 bool is_section(const std::string& dotted) {
   if (dotted.empty()) return false;
   for (const auto& k : case_keys())
-    if (section_of(k.key) == dotted) return true;
+    if (k.key.size() > dotted.size() && k.key.compare(0, dotted.size(), dotted) == 0 &&
+        k.key[dotted.size()] == '.')
+      return true;
   return false;
 }
 

@@ -131,6 +131,38 @@ void check_fluid_species(Checker& k, const Case& c) {
   k.range("modern.shift_max", c.modern.shift_max, 0.0, false, 1.0, false);
 }
 
+// The inlet feed in time (species/inlet_feed.hpp).
+void check_feed(Checker& k, const Case& c) {
+  const auto& f = c.species.feed;
+  if (f.shape == FeedShape::constant) return;
+  k.range("species.feed.t0", f.t0, 0.0, false, kMaxStateValue, false);
+  k.range("species.feed.base", f.base, 0.0, false, kMaxStateValue, false);
+  if (f.shape == FeedShape::pulse) k.positive("species.feed.width", f.width);
+  if (f.shape == FeedShape::table) {
+    k.require(f.table.size() >= 2, "species.feed.table",
+              "expected at least two [t, C] points with species.feed.shape = \"table\", got " +
+                  std::to_string(f.table.size()));
+    for (std::size_t i = 0; i < f.table.size(); ++i) {
+      const std::string key = "species.feed.table[" + std::to_string(i) + "]";
+      k.range(key + "[0]", f.table[i][0], 0.0, false, kMaxStateValue, false);
+      k.range(key + "[1]", f.table[i][1], 0.0, false, kMaxStateValue, false);
+      if (i > 0)
+        k.require(f.table[i][0] > f.table[i - 1][0], key + "[0]",
+                  "expected increasing times, got " + num(f.table[i][0]) + " after " +
+                      num(f.table[i - 1][0]));
+    }
+  }
+  // A pulse or a table has no steady state to stop at (before the pulse the field is as
+  // steady as it will ever be), and the warm start's steady field is that of a constant feed.
+  const bool transient = f.shape == FeedShape::pulse || f.shape == FeedShape::table;
+  k.require(!transient || !c.time.stop_when_steady, "time.stop_when_steady",
+            std::string("expected false with species.feed.shape = \"") + to_string(f.shape) +
+                "\" (a run with this feed has no steady state to stop at), got true");
+  k.require(!c.time.warm_start, "time.warm_start",
+            std::string("expected false with species.feed.shape = \"") + to_string(f.shape) +
+                "\" (the warm start is the steady state of a constant feed), got true");
+}
+
 void check_time_output(Checker& k, const Case& c) {
   const auto& t = c.time;
   k.positive("time.t_end", t.t_end);
@@ -148,6 +180,7 @@ void check_time_output(Checker& k, const Case& c) {
   k.non_negative("time.steady_window", t.steady_window);
   k.non_negative("time.steady_sweep_tol", t.steady_sweep_tol);
   k.non_negative("output.checkpoint_minutes", c.output.checkpoint_minutes);
+  k.non_negative("output.outlet_interval", c.output.outlet_interval);
   if (k.problem) return;
   k.range("time.average_window", t.average_window, 0.0, false, t.t_end, true);
   for (std::size_t i = 0; i < c.output.field_times.size(); ++i) {
@@ -173,6 +206,7 @@ std::optional<Problem> find_problem(const Case& c) {
                                     : c.name + "\""));
   check_geometry(k, c);
   check_fluid_species(k, c);
+  check_feed(k, c);
   check_time_output(k, c);
   return k.problem;
 }
@@ -187,6 +221,19 @@ void validate_case(const Case& c) {
 
 const char* to_string(Scheme s) {
   return s == Scheme::modern ? "modern" : "conventional";
+}
+const char* to_string(FeedShape f) {
+  switch (f) {
+    case FeedShape::constant:
+      return "constant";
+    case FeedShape::step:
+      return "step";
+    case FeedShape::pulse:
+      return "pulse";
+    case FeedShape::table:
+      return "table";
+  }
+  return "?";
 }
 const char* to_string(Flow f) {
   return f == Flow::wcsph ? "wcsph" : "prescribed";
