@@ -36,7 +36,18 @@ struct HistoryRow {
 // history.csv: header t_s,C_mean_x25,C_mean_x50,C_mean_x100,steady_change; one row per check
 // (steady_change empty while undefined).
 void write_history_csv(const std::filesystem::path& file, const std::vector<HistoryRow>& rows);
+// The outlet in time (output.outlet_interval > 0): at x = L, the flow-weighted mean
+//   C_flow = sum_k u(y_k) C(y_k) / sum_k u(y_k)   (what leaves with the flow: the "cup-mixing"
+//                                                   value a residence-time measurement reads)
+// and the plain section average C_section, over the section-average points of the stations.
+struct OutletRow {
+  double t = 0.0;
+  double c_flow = 0.0, c_section = 0.0;
+};
+// outlet.csv: header t_s,C_flow_mean,C_section_mean; one row per sample.
+void write_outlet_csv(const std::filesystem::path& file, const std::vector<OutletRow>& rows);
 // Readers throw std::runtime_error naming the file and the line on bad content.
+std::vector<OutletRow> read_outlet_csv(const std::filesystem::path& file);
 ProbeTable read_probes_csv(const std::filesystem::path& file);
 StationTable read_stations_csv(const std::filesystem::path& file);
 

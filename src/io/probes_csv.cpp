@@ -14,6 +14,7 @@ namespace {
 
 constexpr const char* kProbesHeader = "x_mm,C_y0,C_y+2.5,C_y-2.5,C_mean";
 constexpr const char* kStationsHeader = "x_mm,C_mean";
+constexpr const char* kOutletHeader = "t_s,C_flow_mean,C_section_mean";
 
 [[noreturn]] void fail(const std::filesystem::path& file, long line, const std::string& what) {
   throw std::runtime_error(file.string() + ":" + std::to_string(line) + ": " + what);
@@ -134,6 +135,26 @@ void write_history_csv(const std::filesystem::path& file, const std::vector<Hist
     text += "\n";
   }
   write_text(file, text);
+}
+
+void write_outlet_csv(const std::filesystem::path& file, const std::vector<OutletRow>& rows) {
+  std::string text = std::string(kOutletHeader) + "\n";
+  for (const OutletRow& r : rows) {
+    const double row[] = {r.t, r.c_flow, r.c_section};
+    text += format_row(row, 3) + "\n";
+  }
+  write_text(file, text);
+}
+
+std::vector<OutletRow> read_outlet_csv(const std::filesystem::path& file) {
+  std::vector<OutletRow> rows;
+  read_table(file, kOutletHeader, 3, [&](const std::vector<double>& v) {
+    if (!rows.empty() && !(v[0] > rows.back().t))
+      throw std::runtime_error(file.string() + ": times must increase, got " +
+                               std::to_string(v[0]) + " after " + std::to_string(rows.back().t));
+    rows.push_back({v[0], v[1], v[2]});
+  });
+  return rows;
 }
 
 ProbeTable read_probes_csv(const std::filesystem::path& file) {
