@@ -87,7 +87,34 @@ INSTANTIATE_TEST_SUITE_P(
         Rule{{"time.average_window=-1"}, "time.average_window", "[0, 10)"},
         Rule{{"output.field_times=[0]"}, "output.field_times[0]", "(0, 10]"},
         Rule{{"output.field_times=[1, 11]"}, "output.field_times[1]", "(0, 10]"},
-        Rule{{"output.field_times=[2, 1]"}, "output.field_times[1]", "increasing"}));
+        Rule{{"output.field_times=[2, 1]"}, "output.field_times[1]", "increasing"},
+        Rule{{"output.outlet_interval=-0.01"}, "output.outlet_interval", ">= 0"},
+        Rule{{"species.feed.shape=pulse", "time.stop_when_steady=false", "species.feed.width=0"},
+             "species.feed.width",
+             "> 0"},
+        Rule{{"species.feed.shape=pulse", "species.feed.width=0.1", "time.stop_when_steady=true"},
+             "time.stop_when_steady",
+             "no steady state"},
+        Rule{{"species.feed.shape=step", "time.warm_start=true"},
+             "time.warm_start",
+             "constant feed"},
+        Rule{{"species.feed.shape=step", "species.feed.t0=-1"}, "species.feed.t0", "[0, 1e+20]"},
+        Rule{
+            {"species.feed.shape=step", "species.feed.base=-1"}, "species.feed.base", "[0, 1e+20]"},
+        Rule{{"species.feed.shape=table", "time.stop_when_steady=false",
+              "species.feed.table=[[0, 1]]"},
+             "species.feed.table",
+             "at least two"},
+        Rule{{"species.feed.shape=table", "time.stop_when_steady=false",
+              "species.feed.table=[[0, 1], [0, 2]]"},
+             "species.feed.table[1][0]",
+             "increasing"},
+        Rule{{"species.feed.shape=table", "time.stop_when_steady=false",
+              "species.feed.table=[[0, 1], [1, -2]]"},
+             "species.feed.table[1][1]",
+             "[0, 1e+20]"},
+        Rule{{"species.feed.table=[[0, 1], [1]]"}, "species.feed.table[1]", "a pair"},
+        Rule{{"species.feed.shape=square"}, "species.feed.shape", "\"pulse\""}));
 
 TEST(ValidationDetail, WidthNotAMultipleOfDx) {
   // 100 / 0.25 fits the length, 2 * 5.1 / 0.25 = 40.8 does not fit the width.

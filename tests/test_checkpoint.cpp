@@ -63,6 +63,12 @@ Case short_run(Scheme scheme, Flow flow) {
   c.time.check_interval = 0.002;  // several probe checks (jitter, history) on either side
   c.time.stop_when_steady = false;
   c.output.field_times = {};
+  // A pulse at the inlet and the outlet series: both continue exactly too.
+  c.species.feed.shape = FeedShape::pulse;
+  c.species.feed.t0 = 0.005;
+  c.species.feed.width = 0.005;
+  c.species.feed.base = 0.5;
+  c.output.outlet_interval = 0.001;
   return c;
 }
 
@@ -113,6 +119,13 @@ TEST_P(RestartIsExact, StoppedAndContinuedEqualsUninterrupted) {
   EXPECT_EQ(a.steps, b2.steps);
   EXPECT_EQ(a.stations.c_mean, b2.stations.c_mean);
   EXPECT_EQ(a.history.size(), b2.history.size());
+  ASSERT_EQ(a.outlet.size(), b2.outlet.size());
+  EXPECT_GT(a.outlet.size(), 10u);
+  for (std::size_t i = 0; i < a.outlet.size(); ++i) {
+    EXPECT_EQ(a.outlet[i].t, b2.outlet[i].t) << i;
+    EXPECT_EQ(a.outlet[i].c_flow, b2.outlet[i].c_flow) << i;
+    EXPECT_EQ(a.outlet[i].c_section, b2.outlet[i].c_section) << i;
+  }
   EXPECT_EQ(a.list_rebuilds, b2.list_rebuilds);
   EXPECT_EQ(b2.restarts, 1);
   omp_set_num_threads(threads);

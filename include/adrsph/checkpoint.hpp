@@ -70,7 +70,8 @@ struct RunCheckpoint {
   SteadySnapshot steady;
   std::vector<std::pair<double, ProbeTable>> average_window;  // time.average_window samples
   std::vector<HistoryRow> history;
-  std::string jitter_state;  // the check-instant generator (std::minstd_rand, streamed)
+  std::vector<OutletRow> outlet;  // output.outlet_interval samples so far
+  std::string jitter_state;       // the check-instant generator (std::minstd_rand, streamed)
   double next_check = 0.0;
   std::size_t next_field = 0;    // next output.field_times entry
   double wall_s = 0.0;           // wall time of the run so far (all segments)

@@ -130,6 +130,8 @@ struct RunResult {
   bool warm_start_steady = false;
   // Section averages at the stations at every probe check: the approach to steady state.
   std::vector<HistoryRow> history;
+  // The outlet every output.outlet_interval (outlet.csv; empty when the interval is 0).
+  std::vector<OutletRow> outlet;
   double peak_rss_bytes = 0.0;  // largest resident set of the process (all segments)
   // Heap bytes the engine holds for the particles at the end (capacity): the particle arrays,
   // the neighbour lists, the diffusion weights of a split species step (0 if none).

@@ -5,8 +5,8 @@
 
 namespace adrsph {
 
-double ProbeSampler::concentration_at(double x, double y) const {
-  double num = 0.0, den = 0.0;
+ProbeSampler::FlowSample ProbeSampler::flow_sample_at(double x, double y) const {
+  double num = 0.0, flow = 0.0, den = 0.0;
   grid.for_each_near(x, y, rings, [&](std::uint32_t j) {
     // Every particle that carries species: fluid and both buffers (the outflow buffer
     // holds the C its particles carried through x = L, a zero-gradient continuation).
@@ -14,9 +14,25 @@ double ProbeSampler::concentration_at(double x, double y) const {
     const double rx = x - particles.x[j], ry = y - particles.y[j];
     const double w = particles.vol[j] * kernel.value(std::sqrt(rx * rx + ry * ry));
     num += w * particles.c[j];
+    flow += w * particles.vx[j];
     den += w;
   });
-  return den > 0.0 ? num / den : std::nan("");
+  if (!(den > 0.0)) return {std::nan(""), std::nan("")};
+  return {num / den, flow / den};
+}
+
+OutletRow ProbeSampler::outlet_means(double x, double half_width, int n_points) const {
+  double cu = 0.0, u = 0.0, c = 0.0;
+  for (int k = 0; k < n_points; ++k) {
+    const FlowSample s = flow_sample_at(x, -half_width + (k + 0.5) * 2.0 * half_width / n_points);
+    cu += s.c * s.ux;
+    u += s.ux;
+    c += s.c;
+  }
+  OutletRow row;
+  row.c_flow = u != 0.0 ? cu / u : std::nan("");
+  row.c_section = c / n_points;
+  return row;
 }
 
 double ProbeSampler::section_average(double x, double half_width, int n_points) const {

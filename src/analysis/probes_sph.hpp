@@ -2,7 +2,8 @@
 // that carry species (fluid and buffers, not walls):
 //   C(x_p) = sum_j V_j C_j W(x_p - x_j) / sum_j V_j W(x_p - x_j)
 // Section averages: the mean of such values at n points evenly spread over y in [-R, R]
-// (midpoint rule).
+// (midpoint rule); the flow-weighted mean of the outlet weights them with u_x interpolated
+// the same way.
 #pragma once
 
 #include "adrsph/probes.hpp"
@@ -21,7 +22,15 @@ struct ProbeSampler {
   // change it.
   int rings = 1;
 
-  double concentration_at(double x, double y) const;
+  // C and the streamwise velocity at a point, with the same weights.
+  struct FlowSample {
+    double c = 0.0, ux = 0.0;
+  };
+  FlowSample flow_sample_at(double x, double y) const;
+  double concentration_at(double x, double y) const { return flow_sample_at(x, y).c; }
+  // The outlet row of outlet.csv at x (adrsph/probes.hpp): flow-weighted mean
+  // sum_k ux_k C_k / sum_k ux_k and plain mean of C over the section-average points.
+  OutletRow outlet_means(double x, double half_width, int n_points) const;
   double section_average(double x, double half_width, int n_points) const;
   ProbeTable probe_lines(double length, double half_width, int n_section) const;
 };

@@ -16,7 +16,14 @@ std::vector<double> flatten(const ProbeTable& p) {
 
 double cold_start_transient(const Case& c, double t) {
   const double L = c.geometry.length, u_max = c.u_max();
-  const double k = c.species.k, c_in = c.species.c_in, c_init = c.species.c_init;
+  const double k = c.species.k, c_in = c.species.c_in;
+  // A step feed sweeps away whichever of the initial fluid and the pre-step feed is farther
+  // from c_in (steady_state.hpp, condition 1).
+  const double c_init =
+      c.species.feed.shape == FeedShape::step &&
+              std::fabs(c.species.feed.base - c_in) > std::fabs(c.species.c_init - c_in)
+          ? c.species.feed.base
+          : c.species.c_init;
   // Midpoint rule over y in [0, R] (the profile is symmetric); 4000 points resolve the
   // near-wall layer where the unswept streamlines are.
   constexpr int n = 4000;
@@ -45,6 +52,7 @@ SteadyCriterion steady_criterion(const Case& c) {
     while (s.t_min < c.time.t_end && cold_start_transient(c, s.t_min) > c.time.steady_sweep_tol)
       s.t_min += step;
   }
+  if (c.species.feed.shape == FeedShape::step) s.t_min += c.species.feed.t0;
   return s;
 }
 

@@ -11,6 +11,8 @@
 //    Diffusion only mixes the slow fluid with swept fluid sooner, so the bound is
 //    conservative at low Pe; it is the same for warm-started runs, whose WCSPH flow starts
 //    from the same state at t = 0 (a warm start changes C, not how long the flow needs).
+//    A step feed (species.feed.shape = "step") starts the same sweep at its step instant t0,
+//    from a field of at most max(c_init, base): t_min is counted from t0.
 // 2. The probe profiles stop changing. Single snapshots carry sampling noise (rows of
 //    particles slide past the probe points), so the test compares the MEAN probe profiles
 //    over two consecutive windows [t - 2w, t - w] and [t - w, t], sampled at jittered

@@ -61,6 +61,9 @@ class ChannelScene {
   const std::vector<double>& inflow_row_tails() const { return row_tail_x_; }
   void set_inflow_row_tails(std::vector<double> tails);
 
+  // The C given to inlet particles fed from now on (a feed that varies in time).
+  void set_inlet_concentration(double c) { c_in_ = c; }
+
   double length() const { return length_; }
   double half_width() const { return half_width_; }
 

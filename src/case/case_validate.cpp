@@ -139,28 +139,30 @@ void check_feed(Checker& k, const Case& c) {
   k.range("species.feed.base", f.base, 0.0, false, kMaxStateValue, false);
   if (f.shape == FeedShape::pulse) k.positive("species.feed.width", f.width);
   if (f.shape == FeedShape::table) {
-    k.require(f.table.size() >= 2, "species.feed.table",
-              "expected at least two [t, C] points with species.feed.shape = \"table\", got " +
-                  std::to_string(f.table.size()));
+    std::string few = "expected at least two [t, C] points with species.feed.shape = ";
+    few.append("\"table\", got ").append(std::to_string(f.table.size()));
+    k.require(f.table.size() >= 2, "species.feed.table", few);
     for (std::size_t i = 0; i < f.table.size(); ++i) {
-      const std::string key = "species.feed.table[" + std::to_string(i) + "]";
-      k.range(key + "[0]", f.table[i][0], 0.0, false, kMaxStateValue, false);
-      k.range(key + "[1]", f.table[i][1], 0.0, false, kMaxStateValue, false);
-      if (i > 0)
-        k.require(f.table[i][0] > f.table[i - 1][0], key + "[0]",
-                  "expected increasing times, got " + num(f.table[i][0]) + " after " +
-                      num(f.table[i - 1][0]));
+      std::string key = "species.feed.table[";
+      key.append(std::to_string(i)).append("]");
+      const std::string t_key = key + "[0]", c_key = key + "[1]";
+      k.range(t_key, f.table[i][0], 0.0, false, kMaxStateValue, false);
+      k.range(c_key, f.table[i][1], 0.0, false, kMaxStateValue, false);
+      if (i == 0) continue;
+      std::string order = "expected increasing times, got ";
+      order.append(num(f.table[i][0])).append(" after ").append(num(f.table[i - 1][0]));
+      k.require(f.table[i][0] > f.table[i - 1][0], t_key, order);
     }
   }
   // A pulse or a table has no steady state to stop at (before the pulse the field is as
   // steady as it will ever be), and the warm start's steady field is that of a constant feed.
+  std::string with = "expected false with species.feed.shape = \"";
+  with.append(to_string(f.shape)).append("\" ");
   const bool transient = f.shape == FeedShape::pulse || f.shape == FeedShape::table;
   k.require(!transient || !c.time.stop_when_steady, "time.stop_when_steady",
-            std::string("expected false with species.feed.shape = \"") + to_string(f.shape) +
-                "\" (a run with this feed has no steady state to stop at), got true");
+            with + "(a run with this feed has no steady state to stop at), got true");
   k.require(!c.time.warm_start, "time.warm_start",
-            std::string("expected false with species.feed.shape = \"") + to_string(f.shape) +
-                "\" (the warm start is the steady state of a constant feed), got true");
+            with + "(the warm start is the steady state of a constant feed), got true");
 }
 
 void check_time_output(Checker& k, const Case& c) {

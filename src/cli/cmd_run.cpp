@@ -76,6 +76,10 @@ std::vector<std::string> write_outputs(const fs::path& dir, const Case& c, const
     write_history_csv(dir / "history.csv", r.history);
     files.push_back("history.csv");
   }
+  if (!r.outlet.empty()) {
+    write_outlet_csv(dir / "outlet.csv", r.outlet);
+    files.push_back("outlet.csv");
+  }
   if (!frames.empty()) {
     write_fields_xdmf(dir / "fields.xmf", "fields.h5", frames);
     files.push_back("fields.h5");
@@ -355,7 +359,8 @@ Command register_run(CLI::App& app) {
   auto* sub = app.add_subcommand("run", "Run one SPH simulation of a case file");
   sub->footer(
       "Writes DIR/run.json, probes.csv, stations.csv, history.csv, case.toml, fields.h5 and\n"
-      "fields.xmf (see README.md). The outputs are written into DIR.partial and replace DIR only\n"
+      "fields.xmf, and outlet.csv when output.outlet_interval > 0 (see README.md). The outputs are "
+      "written into DIR.partial and replace DIR only\n"
       "at the end, so a run that fails at start-up leaves an existing DIR untouched. A run that\n"
       "fails numerically still writes the last good state and exits 3.\n"
       "Checkpoints: every output.checkpoint_minutes of wall time (default 10) and on SIGINT or\n"

@@ -49,6 +49,7 @@ RunLoop::RunLoop(const Case& c, SphSolver& solver, RunObserver& observer, Mode m
       first_step_(solver.steps()),
       wall_start_(wall_start),
       wall_steps_start_(omp_get_wtime()) {
+  outlet_on_ = mode == Mode::run && c.output.outlet_interval > 0.0;
   std::sort(field_times_.begin(), field_times_.end());
   if (resume) {
     wall_before_ = resume->wall_s;
@@ -58,6 +59,10 @@ RunLoop::RunLoop(const Case& c, SphSolver& solver, RunObserver& observer, Mode m
     std::istringstream(resume->jitter_state) >> jitter_;
     next_check_ = resume->next_check;
     next_field_ = resume->next_field;
+    // The instant after the last sample: a function of the time reached (no state of its own).
+    if (outlet_on_)
+      next_outlet_ = c.output.outlet_interval *
+                     (std::floor(solver.time() / c.output.outlet_interval + 1e-9) + 1.0);
   } else {
     next_check_ = next_interval();
   }
@@ -84,6 +89,16 @@ void RunLoop::sample() {
     while (window_.front().first < solver_.time() - c_.time.average_window - eps_t_)
       window_.pop_front();
   }
+}
+
+void RunLoop::sample_outlet() {
+  ScopedPhase timer(solver_.timers(), Phase::probes);
+  const double t = solver_.time(), every = c_.output.outlet_interval;
+  OutletRow row =
+      solver_.sampler().outlet_means(c_.geometry.length, c_.geometry.half_width, n_section_);
+  row.t = t;
+  result_.outlet.push_back(row);
+  next_outlet_ = every * (std::floor(t / every + 1e-9) + 1.0);
 }
 
 void RunLoop::emit_fields() {
@@ -115,6 +130,7 @@ void RunLoop::checkpoint() {
   cp.steady = steady_.snapshot();
   cp.average_window.assign(window_.begin(), window_.end());
   cp.history = result_.history;
+  cp.outlet = result_.outlet;
   std::ostringstream js;
   js << jitter_;
   cp.jitter_state = js.str();
@@ -137,10 +153,12 @@ RunLoop::End RunLoop::run() {
   const bool stop_when_steady = warm || c_.time.stop_when_steady;
   const long max_steps = warm ? 0 : c_.time.max_steps;
   CheckpointRequest pending = CheckpointRequest::none;
+  if (outlet_on_ && result_.outlet.empty()) sample_outlet();  // the start
   while (solver_.time() < c_.time.t_end - eps_t_ &&
          (max_steps == 0 || solver_.steps() < max_steps)) {
     if (!solver_.step(std::min(dt_, c_.time.t_end - solver_.time()))) return End::failed;
     const double t = solver_.time();
+    if (outlet_on_ && t >= next_outlet_ - eps_t_) sample_outlet();
     if (t >= next_check_ - eps_t_) {
       next_check_ += next_interval();
       sample();

@@ -8,6 +8,8 @@
 //                     steady test, but no progress, fields, averaging or history, and no
 //                     checkpoints: a stop request ends it as interrupted (its state is not
 //                     worth a checkpoint yet), and it always stops when steady.
+// Mode::run also samples the outlet every output.outlet_interval (outlet.csv), at the first
+// step that reaches each multiple of it: the row holds the time it was taken.
 #pragma once
 
 #include <deque>
@@ -55,6 +57,9 @@ class RunLoop {
 
  private:
   double next_interval();
+  // The outlet row of outlet.csv now (Mode::run with output.outlet_interval > 0), and the
+  // next sample instant: the next whole multiple of the interval.
+  void sample_outlet();
   void report_progress(double change);
   void checkpoint();
 
@@ -74,6 +79,8 @@ class RunLoop {
   // measure.
   std::minstd_rand jitter_{12345};
   double next_check_ = 0.0;
+  bool outlet_on_ = false;
+  double next_outlet_ = 0.0;
   double dt_ = 0.0, eps_t_ = 0.0;
   int n_section_ = 0;
   long first_step_ = 0;  // solver steps when this segment began (progress rate)

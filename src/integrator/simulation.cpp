@@ -123,6 +123,7 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
     result.warm_start_steps = resume->warm_start_steps;
     result.warm_start_wall_s = resume->warm_start_wall_s;
     result.history = resume->history;
+    result.outlet = resume->outlet;
   }
   SphSolver solver = make_solver(c, observer, result, resume);
   result.dt = solver.dt_limits();

@@ -9,6 +9,7 @@
 #include "schemes/density_passes.hpp"
 #include "schemes/interaction_pass.hpp"
 #include "schemes/scheme_traits.hpp"
+#include "species/inlet_feed.hpp"
 
 namespace adrsph {
 
@@ -56,6 +57,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
     for (std::size_t i = 0; i < store_.size(); ++i) store_.c[i] = initial_c[i];
   }
   for (std::size_t i = 0; i < store_.size(); ++i) store_.p[i] = phys_.eos.p_background;
+  if (feed_varies(c.species)) apply_feed(0.0);
   rebuild();
 }
 
@@ -204,6 +206,9 @@ bool SphSolver::step_impl(double dt) {
     phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
     phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
   }
+  // The inlet value of a feed that varies, at the middle of the step (second order in time
+  // for a smooth feed); a constant feed is the buffer's initial value.
+  if (feed_varies(case_.species)) apply_feed(t_ + 0.5 * dt);
   // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x_start = x then),
   // stage 2 at x_start + dt u*.
   evaluate_impl<S, Ale, Split>(0.5 * dt, false);
@@ -251,6 +256,16 @@ void SphSolver::react(double dt) {
     store_.c[i] *= decay;
   }
   ledger_.reaction += consumed;
+}
+
+void SphSolver::apply_feed(double t) {
+  ScopedPhase timer(timers_, Phase::boundaries);
+  const double c_in = inlet_concentration(case_.species, t);
+  scene_.set_inlet_concentration(c_in);
+  const std::size_t n = store_.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    if (store_.kind[i] == kInletByte) store_.c[i] = c_in;
 }
 
 void SphSolver::update_buffers(double dt) {

@@ -143,6 +143,9 @@ class SphSolver {
   double diffuse_species(double dt);  // sub-cycled diffusion; returns the buffer exchange
   void react(double dt);
   void update_buffers(double dt);  // inflow rows, kinds, crossings
+  // A feed that varies in time (species/inlet_feed.hpp): the inflow buffer and the rows fed
+  // from now on carry the inlet value at time t.
+  void apply_feed(double t);
   bool report_lost();
   // The conventional scheme's summation density at the positions of the next evaluation,
   // taken by the force pass (pass_context.hpp). Valid until the particles are re-sorted or a

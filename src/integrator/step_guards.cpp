@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "integrator/sph_solver.hpp"
+#include "species/inlet_feed.hpp"
 
 namespace adrsph {
 
@@ -48,7 +49,7 @@ bool SphSolver::check_state(double dt) {
   double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0, c_dev = 0.0;
   // Diffusion and reaction keep C within [0, c_max] (maximum principle); the dilatation term
   // may move it slightly. A species step beyond its stability limit leaves this band fast.
-  const double c_max = std::max(case_.species.c_in, case_.species.c_init);
+  const double c_max = std::max(feed_max(case_.species), case_.species.c_init);
   const double rho0 = case_.fluid.rho0;
   const bool shifting = s.needs().shifting;  // sx, sy exist only for a shifting scheme
 #pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max, c_dev) reduction(+ : bad)

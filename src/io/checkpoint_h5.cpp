@@ -173,6 +173,9 @@ void write_run(hid_t root, const RunCheckpoint& r, const std::string& file) {
   put(id, "history_t", history_t, file);
   put_rows(id, "history_stations", history_stations, file);
   put(id, "history_change", history_change, file);
+  std::vector<std::vector<double>> outlet;
+  for (const OutletRow& o : r.outlet) outlet.push_back({o.t, o.c_flow, o.c_section});
+  put_rows(id, "outlet", outlet, file);
   put_text(id, "jitter_state", r.jitter_state, file);
   write_attribute(id, "next_check", r.next_check, file);
   put_long(id, "next_field", static_cast<long>(r.next_field), file);
@@ -210,6 +213,13 @@ void read_run(hid_t root, RunCheckpoint& r, const std::string& file) {
     throw std::runtime_error(file + ": /run/history arrays differ in length");
   for (std::size_t i = 0; i < history_t.size(); ++i)
     r.history.push_back({history_t[i], history_stations[i], history_change[i]});
+  // (absent from checkpoints written before outlet.csv existed: no samples then)
+  if (H5Lexists(id, "outlet", H5P_DEFAULT) > 0) {
+    for (const auto& row : get_rows(id, grp, "outlet", file)) {
+      if (row.size() != 3) throw std::runtime_error(file + ": /run/outlet rows need 3 values");
+      r.outlet.push_back({row[0], row[1], row[2]});
+    }
+  }
   r.jitter_state = get_text(id, grp, "jitter_state", file);
   r.next_check = read_attribute<double>(id, "next_check", file);
   r.next_field = static_cast<std::size_t>(get_long(id, "next_field", file));
