@@ -33,5 +33,6 @@ Command register_run(CLI::App& app);
 Command register_reference(CLI::App& app);
 Command register_compare(CLI::App& app);
 Command register_study(CLI::App& app);
+Command register_rtd(CLI::App& app);
 
 }  // namespace adrsph::cli

@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "adrsph 0.1.0");
   const adrsph::cli::Command commands[] = {
       adrsph::cli::register_run(app), adrsph::cli::register_reference(app),
-      adrsph::cli::register_compare(app), adrsph::cli::register_study(app)};
+      adrsph::cli::register_compare(app), adrsph::cli::register_study(app),
+      adrsph::cli::register_rtd(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,185 @@
+// `adrsph rtd RUN_DIR [--out DIR]`: the residence-time distribution of a tracer-pulse run
+// (docs/rtd.md). Reads the run's case (case.toml with run.json's overrides) and its outlet in
+// time (outlet.csv); writes rtd.csv, rtd.json, rtd.md and rtd.png, and prints rtd.md.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adrsph/case.hpp"
+#include "adrsph/probes.hpp"
+#include "analysis/rtd.hpp"
+#include "analysis/rtd_report.hpp"
+#include "cli/commands.hpp"
+#include "cli/python_tools.hpp"
+#include "cli/study_state.hpp"
+
+namespace adrsph::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RtdOptions {
+  std::string run_dir, out;
+  bool plot = true;
+};
+
+int bad_input(const std::string& message) {
+  std::cerr << "adrsph rtd: " << message << "\n";
+  return kExitBadInput;
+}
+
+// Writes every file through FILE.tmp and renames them only once all are written, so that a
+// failure leaves the previous outputs (or none), never a mix or a truncated file.
+void write_all(const std::vector<std::pair<fs::path, std::string>>& files) {
+  std::vector<fs::path> written;
+  try {
+    for (const auto& [file, text] : files) {
+      fs::path tmp = file;
+      tmp += ".tmp";
+      written.push_back(tmp);
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      out << text;
+      out.close();
+      if (!out) throw std::runtime_error(tmp.string() + ": write failed");
+    }
+    for (const auto& [file, text] : files) {
+      fs::path tmp = file;
+      tmp += ".tmp";
+      fs::rename(tmp, file);
+    }
+  } catch (...) {
+    std::error_code ec;
+    for (const fs::path& tmp : written) fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+void plot_rtd(const fs::path& csv, const fs::path& json, const fs::path& png,
+              const std::string& title) {
+  const fs::path script = tools_dir() / "plot_rtd.py";
+  if (!fs::exists(script)) {
+    std::printf("plot: %s not found; no PNG\n", script.c_str());
+    return;
+  }
+  const std::string py = find_plotting_python();
+  if (py.empty()) {
+    std::printf("plot: no python3 with matplotlib found (set ADRSPH_PYTHON); no PNG\n");
+    return;
+  }
+  const std::string cmd = shell_quote(py) + " " + shell_quote(script.string()) + " " +
+                          shell_quote(csv.string()) + " --json " + shell_quote(json.string()) +
+                          " --out " + shell_quote(png.string()) + " --title " + shell_quote(title);
+  std::cout.flush();
+  std::fflush(stdout);
+  if (std::system(cmd.c_str()) != 0) std::printf("plot: %s failed; no PNG\n", script.c_str());
+}
+
+int run_rtd(const RtdOptions& o) {
+  const fs::path run_dir = o.run_dir;
+  std::error_code ec;
+  if (!fs::is_directory(run_dir, ec))
+    return bad_input(run_dir.string() +
+                     ": no such directory; give the output directory of `adrsph run` (it holds "
+                     "case.toml, run.json and outlet.csv)");
+  const fs::path run_json = run_dir / "run.json", case_file = run_dir / "case.toml";
+  const fs::path outlet_csv = run_dir / "outlet.csv";
+  if (!fs::exists(run_json, ec))
+    return bad_input(run_json.string() +
+                     ": not found; RUN_DIR must be the output directory of a finished `adrsph "
+                     "run` (run.json holds the --set values the case was run with)");
+  {
+    // read_run_record() takes an unreadable run.json for one without overrides: refuse it
+    // rather than analyse the case as it was not run.
+    std::ifstream in(run_json, std::ios::binary);
+    if (!nlohmann::json::accept(in))
+      return bad_input(run_json.string() +
+                       ": not valid JSON; it must be the run.json that `adrsph run` wrote (its "
+                       "\"overrides\" are the --set values of the run)");
+  }
+  const std::vector<std::string> overrides =
+      read_run_record(run_dir).overrides.value_or(std::vector<std::string>{});
+
+  if (!fs::exists(case_file, ec))
+    return bad_input(case_file.string() +
+                     ": not found; RUN_DIR must be the output directory of `adrsph run` (it "
+                     "keeps the case file as case.toml)");
+  Case c;
+  try {
+    c = load_case(case_file, overrides);
+  } catch (const CaseError& e) {
+    // An override names "--set": it came from run.json.
+    if (e.file() == "--set") return bad_input(run_json.string() + ": overrides: " + e.what());
+    return bad_input(e.what());
+  }
+  const std::string case_name =
+      overrides.empty() ? case_file.string() : case_file.string() + " (with run.json's --set)";
+  try {
+    analysis::check_rtd_feed(c);
+  } catch (const analysis::RtdInputError& e) {
+    return bad_input(case_name + ": " + e.what());
+  }
+  if (!fs::exists(outlet_csv, ec))
+    return bad_input(outlet_csv.string() +
+                     ": not found; the run must set output.outlet_interval > 0 (the outlet "
+                     "sampling interval in s, e.g. --set output.outlet_interval=0.01); run it "
+                     "again with it");
+
+  analysis::Rtd r;
+  try {
+    r = analysis::residence_time_distribution(read_outlet_csv(outlet_csv), c);
+  } catch (const analysis::RtdInputError& e) {
+    const bool feed = e.source() == analysis::RtdInputError::Source::feed;
+    return bad_input((feed ? case_name : outlet_csv.string()) + ": " + e.what());
+  } catch (const std::exception& e) {  // read_outlet_csv names the file and the line
+    return bad_input(e.what());
+  }
+
+  const std::string md = analysis::rtd_markdown(r, c);
+  std::cout << md;
+  const fs::path out = o.out.empty() ? run_dir : fs::path(o.out);
+  const fs::path csv = out / "rtd.csv", json = out / "rtd.json", md_file = out / "rtd.md";
+  try {
+    fs::create_directories(out);
+    write_all({{csv, analysis::rtd_csv(r)}, {json, analysis::rtd_json(r, c)}, {md_file, md}});
+  } catch (const std::exception& e) {
+    std::cerr << "adrsph rtd: " << e.what() << "\n";
+    return kExitIoError;
+  }
+  std::printf("\nwrote %s, %s and %s\n", md_file.c_str(), json.c_str(), csv.c_str());
+  if (o.plot) plot_rtd(csv, json, out / "rtd.png", "residence-time distribution: " + c.name);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command register_rtd(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "rtd",
+      "Residence-time distribution of a tracer-pulse run (docs/rtd.md): the mean residence "
+      "time and variance of the channel from the moments of the outlet response, corrected "
+      "for the feed's, against the space time V/Q and the Taylor-Aris dispersion model.\n"
+      "Needs a run made with species.feed.shape = \"pulse\" or \"table\" (a tracer input; "
+      "species.k = 0 for a conserved tracer) and output.outlet_interval > 0, long enough "
+      "(time.t_end) for the outlet to return to species.feed.base. Reads RUN_DIR/case.toml "
+      "with the --set values of RUN_DIR/run.json, and RUN_DIR/outlet.csv. Writes rtd.csv "
+      "(t_s,C_out,E_per_s,C_model), rtd.json (every figure), rtd.md (printed) and rtd.png "
+      "(tools/plot_rtd.py, when a python3 with matplotlib is found; $ADRSPH_PYTHON "
+      "overrides) into DIR, default RUN_DIR.\n"
+      "Exit codes: 0 ok, 1 I/O error, 2 bad input (missing run directory, case.toml, run.json "
+      "or outlet.csv, a feed that is not a pulse or a table, fewer than 3 samples, no tracer "
+      "at the outlet).");
+  auto o = std::make_shared<RtdOptions>();
+  sub->add_option("run_dir", o->run_dir, "Run directory (adrsph run --out)")->required();
+  sub->add_option("--out", o->out, "Output directory (default RUN_DIR)")->check(kNonEmptyPath);
+  sub->add_flag("!--no-plot", o->plot, "Do not draw the PNG");
+  return {sub, [o] { return run_rtd(*o); }};
+}
+
+}  // namespace adrsph::cli
