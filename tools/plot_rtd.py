@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """The measured normalised outlet response of a tracer-pulse run against the Taylor-Aris model.
 
-Reads the CSV written by `adrsph rtd` (t_s,C_out,E_per_s,C_model) and its rtd.json (the feed's
-base and the model's area on the same samples), and draws E_out = (C_out - base) / area against
-the model's (C_model - base) / model area, with the measured outlet mean and the model's
-(feed mean + V/Q) marked (docs/rtd.md).
+Reads the CSV written by `adrsph rtd` (t_s,C_out,E_per_s,C_model,C_model_closed) and its
+rtd.json (the feed's base and the model's area on the same samples), and draws
+E_out = (C_out - base) / area against the model's (C_model - base) / model area (semi-infinite
+medium) and the model on the channel's boundary conditions (C_model_closed, normalised by its
+own area on the samples), with the measured outlet mean and the model's (feed mean + V/Q)
+marked (docs/rtd.md).
 
 usage: plot_rtd.py RTD.csv [--json RTD.json] [--out FILE.png] [--title TEXT]
 """
@@ -19,7 +21,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLUMNS = ["t_s", "C_out", "E_per_s", "C_model"]
+COLUMNS = ["t_s", "C_out", "E_per_s", "C_model", "C_model_closed"]
 
 
 def read_rtd(path):
@@ -30,7 +32,7 @@ def read_rtd(path):
     missing = [c for c in COLUMNS if c not in rows[0]]
     if missing:
         sys.exit(f"{path}: missing columns {missing}")
-    # C_model is empty where there is no model (species.D = 0).
+    # The model columns are empty where there is no model (species.D = 0).
     return {k: [float(r[k]) if r[k] else None for r in rows] for k in COLUMNS}
 
 
@@ -53,7 +55,13 @@ def main():
     ax.plot(data["t_s"], data["E_per_s"], "-", label="run: (C_out - base) / area")
     if model_area:
         model = [None if c is None else (c - base) / model_area for c in data["C_model"]]
-        ax.plot(data["t_s"], model, "--", label=f"Taylor-Aris, Pe_L = {info['model']['Pe_L']:.3g}")
+        ax.plot(data["t_s"], model, "--",
+                label=f"Taylor-Aris, semi-infinite, Pe_L = {info['model']['Pe_L']:.3g}")
+        t, closed = data["t_s"], [c - base for c in data["C_model_closed"]]
+        area = sum(0.5 * (t[i] - t[i - 1]) * (closed[i] + closed[i - 1]) for i in range(1, len(t)))
+        if area:
+            ax.plot(t, [v / area for v in closed], "-.",
+                    label="Taylor-Aris, channel's boundary conditions")
     ax.axvline(info["outlet"]["mean"], color="C0", lw=0.8, ls=":", label="run: outlet mean")
     if info["feed"]["mean"] is not None and info["space_time"] is not None:
         ax.axvline(info["feed"]["mean"] + info["space_time"], color="C1", lw=0.8, ls=":",

@@ -3,6 +3,8 @@
 // 1D dispersive medium fed at x = 0, and the outlet response it predicts for a case's feed.
 #pragma once
 
+#include <vector>
+
 #include "adrsph/case.hpp"
 
 namespace adrsph::analysis {
@@ -52,5 +54,16 @@ TaylorAris taylor_aris(const Case& c);
 // integrated by parts onto F (the excess is 0 at the table's ends), sum over segments of
 // slope_j * integral over the segment of F(t - s) ds, by Simpson's rule. Other feeds: 0.
 double model_outlet_excess(const Case::Species& s, const InverseGaussian& e, double t);
+
+// The same dispersion on the channel's own length and boundary conditions (docs/rtd.md,
+// section 6): the inlet held at the feed, C(0, t) = C_in(t), as the inflow buffer holds it,
+// and no dispersive flux through x = L, as the outflow buffer takes no part in the diffusion.
+// Unlike the semi-infinite medium of the inverse Gaussian, tracer cannot disperse past the
+// outlet and come back, and it diffuses back out through the inlet once the pulse is over:
+// at Pe_L ~ 10 the mean residence time falls several per cent below V/Q.
+// Finite volumes (central fluxes, cells with U h / K <= 1/2) and BDF2 steps far finer than
+// the feed's features; returns the outlet excess C(L, t) - base at `times` (increasing).
+std::vector<double> closed_outlet_excess(const Case& c, const TaylorAris& m,
+                                         const std::vector<double>& times);
 
 }  // namespace adrsph::analysis

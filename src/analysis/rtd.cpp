@@ -116,7 +116,9 @@ Rtd residence_time_distribution(const std::vector<OutletRow>& rows, const Case& 
     const double nan = std::nan("");
     r.model = {nan, nan, r.space_time, 0.0, {nan, nan}};
     r.model_area = r.l1 = nan;
+    r.closed_mean = r.closed_variance = r.closed_l1 = nan;
     r.c_model.assign(r.t.size(), nan);
+    r.c_closed.assign(r.t.size(), nan);
     return r;
   }
   r.model = taylor_aris(c);
@@ -129,6 +131,15 @@ Rtd residence_time_distribution(const std::vector<OutletRow>& rows, const Case& 
   std::vector<double> e_model;
   for (double v : g_model) e_model.push_back(v / r.model_area);
   r.l1 = l1_distance(r.t, r.e_out, e_model);
+
+  const std::vector<double> g_closed = closed_outlet_excess(c, r.model, r.t);
+  for (double v : g_closed) r.c_closed.push_back(base + v);
+  const CurveMoments closed = curve_moments(r.t, g_closed);
+  r.closed_mean = closed.mean - r.feed.mean;
+  r.closed_variance = closed.variance - r.feed.variance;
+  std::vector<double> e_closed;
+  for (double v : g_closed) e_closed.push_back(v / closed.area);
+  r.closed_l1 = l1_distance(r.t, r.e_out, e_closed);
   return r;
 }
 

@@ -66,10 +66,18 @@ struct Rtd {
   // int |g / area - g_model / model_area| dt on the samples: 0 for the same shape, at most 2
   // for two non-negative curves.
   double l1 = 0.0;
+  // The model on the channel's own boundary conditions (closed_outlet_excess): its outlet C
+  // per sample, its vessel moments (feed-corrected like the run's) and its L1 distance to the
+  // run. The run's figures to compare with: V/Q and 2 K L / U^3 hold for the semi-infinite
+  // medium only.
+  std::vector<double> c_closed;
+  double closed_mean = 0.0, closed_variance = 0.0, closed_l1 = 0.0;
 
   double mean_over_space_time_minus_1() const { return mean_residence_time / space_time - 1.0; }
   // s^2 against the model's 2 K L / U^3.
   double variance_over_model_minus_1() const { return variance / model.residence.variance() - 1.0; }
+  double mean_over_closed_minus_1() const { return mean_residence_time / closed_mean - 1.0; }
+  double variance_over_closed_minus_1() const { return variance / closed_variance - 1.0; }
 };
 
 // Throws RtdInputError (Source::feed) unless the feed is a tracer input of finite amount: a

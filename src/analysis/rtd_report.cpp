@@ -65,15 +65,20 @@ std::vector<std::string> rtd_warnings(const Rtd& r, const Case& c) {
 }
 
 std::string rtd_csv(const Rtd& r) {
-  std::string text = "t_s,C_out,E_per_s,C_model\n";
+  std::string text = "t_s,C_out,E_per_s,C_model,C_model_closed\n";
   char buf[96];
   for (std::size_t i = 0; i < r.t.size(); ++i) {
     std::snprintf(buf, sizeof buf, "%.10g,%.10g,%.10g,", r.t[i], r.c_out[i], r.e_out[i]);
     text += buf;
-    if (std::isfinite(r.c_model[i])) {
-      std::snprintf(buf, sizeof buf, "%.10g", r.c_model[i]);
+    // Empty where there is no model (species.D = 0).
+    auto cell = [&](double v) {
+      if (!std::isfinite(v)) return;
+      std::snprintf(buf, sizeof buf, "%.10g", v);
       text += buf;
-    }
+    };
+    cell(r.c_model[i]);
+    text += ',';
+    cell(r.c_closed[i]);
     text += '\n';
   }
   return text;
@@ -121,6 +126,12 @@ std::string rtd_json(const Rtd& r, const Case& c) {
                     {"outlet_area", number(r.model_area)}};
   j["variance_over_model_minus_1"] = number(r.variance_over_model_minus_1());
   j["L1"] = number(r.l1);
+  j["closed_outlet_model"] = Json{{"name", "Taylor-Aris, Dirichlet inlet, no flux at x = L"},
+                                  {"mean", number(r.closed_mean)},
+                                  {"variance", number(r.closed_variance)},
+                                  {"L1", number(r.closed_l1)}};
+  j["mean_over_closed_minus_1"] = number(r.mean_over_closed_minus_1());
+  j["variance_over_closed_minus_1"] = number(r.variance_over_closed_minus_1());
   j["warnings"] = rtd_warnings(r, c);
   return j.dump(2) + "\n";
 }
@@ -142,6 +153,13 @@ std::string rtd_markdown(const Rtd& r, const Case& c) {
   md += "| variance s^2 [s^2] | " + g4(r.variance) +
         " | Taylor-Aris 2 K L / U^3 = " + g4(r.model.residence.variance()) + " | " +
         percent(r.variance_over_model_minus_1()) + " |\n";
+  if (r.has_model) {
+    md += "| t_m against the dispersion model on the channel's boundary conditions | " +
+          g4(r.mean_residence_time) + " | " + g4(r.closed_mean) + " | " +
+          percent(r.mean_over_closed_minus_1()) + " |\n";
+    md += "| s^2 against the same | " + g4(r.variance) + " | " + g4(r.closed_variance) + " | " +
+          percent(r.variance_over_closed_minus_1()) + " |\n";
+  }
   md += "| recovery (outlet / feed amount) | " + fmt("%.4f", r.recovery) +
         " | 1 (conserved tracer) | " + percent(r.recovery - 1.0) + " |\n\n";
   if (r.has_model) {
@@ -156,7 +174,12 @@ std::string rtd_markdown(const Rtd& r, const Case& c) {
              : " < 10: the model is only indicative (transverse mixing time R^2/D = " + g4(mixing) +
                    " s is not well below tau = " + g4(r.space_time) + " s).\n");
     md += "Shape: L1 distance of the normalised outlet responses, run against model = " +
-          fmt("%.3g", r.l1) + " (0: the same shape, 2: no overlap).\n";
+          fmt("%.3g", r.l1) + " (semi-infinite medium), " + fmt("%.3g", r.closed_l1) +
+          " (channel's boundary conditions); 0: the same shape, 2: no overlap.\n";
+    md +=
+        "V/Q and 2 K L / U^3 are those of a semi-infinite medium; the channel's inlet is held "
+        "at the feed (tracer diffuses back out after the pulse) and its outlet passes no "
+        "dispersive flux, which the closed model includes (docs/rtd.md, section 6).\n";
   }
   md += "Tail: the last sample is " + fmt("%.3g", r.tail) + " of the peak.\n";
   const auto warnings = rtd_warnings(r, c);
