@@ -63,22 +63,8 @@ void write_all(const std::vector<std::pair<fs::path, std::string>>& files) {
 
 void plot_rtd(const fs::path& csv, const fs::path& json, const fs::path& png,
               const std::string& title) {
-  const fs::path script = tools_dir() / "plot_rtd.py";
-  if (!fs::exists(script)) {
-    std::printf("plot: %s not found; no PNG\n", script.c_str());
-    return;
-  }
-  const std::string py = find_plotting_python();
-  if (py.empty()) {
-    std::printf("plot: no python3 with matplotlib found (set ADRSPH_PYTHON); no PNG\n");
-    return;
-  }
-  const std::string cmd = shell_quote(py) + " " + shell_quote(script.string()) + " " +
-                          shell_quote(csv.string()) + " --json " + shell_quote(json.string()) +
-                          " --out " + shell_quote(png.string()) + " --title " + shell_quote(title);
-  std::cout.flush();
-  std::fflush(stdout);
-  if (std::system(cmd.c_str()) != 0) std::printf("plot: %s failed; no PNG\n", script.c_str());
+  run_plot_script("plot_rtd.py",
+                  {csv.string(), "--json", json.string(), "--out", png.string(), "--title", title});
 }
 
 int run_rtd(const RtdOptions& o) {

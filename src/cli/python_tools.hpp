@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace adrsph::cli {
 
@@ -16,5 +17,10 @@ std::string find_plotting_python();
 
 // The repository's tools/ directory (fixed at build time), e.g. tools/plot_errors.py.
 std::filesystem::path tools_dir();
+
+// Run tools/<script> with `args` (each quoted) under find_plotting_python(). A missing script,
+// no plotting python or a failed plot prints why on stdout ("plot: ...; no PNG") and goes on:
+// the figures are extras, never a reason for a command to fail.
+void run_plot_script(const std::string& script, const std::vector<std::string>& args);
 
 }  // namespace adrsph::cli
