@@ -50,6 +50,10 @@ std::vector<std::string> rtd_warnings(const Rtd& r, const Case& c) {
                 " of the peak (above " + fmt("%g", Rtd::kTruncatedTail) +
                 "), so the moments miss the tail and the mean and variance are too small; run "
                 "longer (time.t_end)");
+  if (!c.reactions.empty())
+    w.push_back(
+        "the case has [[reaction]] tables: the tracer reacts, so the outlet does not "
+        "see E(t) and the moments are biased; a residence-time measurement has none");
   if (c.species.k > 0.0)
     w.push_back("species.k = " + g4(c.species.k) +
                 " 1/s: the tracer reacts, so the outlet sees E(t) exp(-k t), not E(t) (recovery "

@@ -11,6 +11,8 @@
 //    Diffusion only mixes the slow fluid with swept fluid sooner, so the bound is
 //    conservative at low Pe; it is the same for warm-started runs, whose WCSPH flow starts
 //    from the same state at t = 0 (a warm start changes C, not how long the flow needs).
+//    With [[reaction]] tables the same bound takes the batch solution of the case's kinetics
+//    (species/reaction_kinetics.hpp) in place of c exp(-kt).
 //    A step feed (species.feed.shape = "step") starts the same sweep at its step instant t0,
 //    from a field of at most max(c_init, base): t_min is counted from t0.
 // 2. The probe profiles stop changing. Single snapshots carry sampling noise (rows of

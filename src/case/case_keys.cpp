@@ -1,6 +1,7 @@
 // The key table: one line per case-file key, with a typed reader for each kind of value.
 #include "case/case_keys.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -72,25 +73,75 @@ std::vector<double> read_number_list(const toml::node& n, const ValueSource& src
   return out;
 }
 
-// [[t, C], ...]: pairs of numbers.
-std::vector<std::array<double, 2>> read_pair_list(const toml::node& n, const ValueSource& src) {
+// [[a, b, ...], ...]: arrays of N numbers each. `one` names an element ("a pair [t, C] of
+// two numbers"), `many` the array ("[t, C] pairs") for the messages.
+template <std::size_t N>
+std::vector<std::array<double, N>> read_tuples(const toml::node& n, const ValueSource& src,
+                                               const std::string& one, const std::string& many,
+                                               const std::string& example) {
   const auto* a = n.as_array();
-  const std::string example = "an array of [t, C] pairs, e.g. [[0.0, 0.0], [0.1, 2.0]]";
-  if (!a) fail(src, example, n);
-  std::vector<std::array<double, 2>> out;
+  if (!a) fail(src, "an array of " + many + ", e.g. " + example, n);
+  std::vector<std::array<double, N>> out;
   for (std::size_t i = 0; i < a->size(); ++i) {
     ValueSource item = src;
     item.key = src.key + "[" + std::to_string(i) + "]";
     item.raw.reset();
-    const auto* pair = a->get(i)->as_array();
-    if (!pair || pair->size() != 2) fail(item, "a pair [t, C] of two numbers", *a->get(i));
-    std::array<double, 2> v{};
-    for (std::size_t j = 0; j < 2; ++j) {
+    const auto* tuple = a->get(i)->as_array();
+    if (!tuple || tuple->size() != N) fail(item, one, *a->get(i));
+    std::array<double, N> v{};
+    for (std::size_t j = 0; j < N; ++j) {
       ValueSource part = item;
       part.key = item.key + "[" + std::to_string(j) + "]";
-      v[j] = read_number(*pair->get(j), part);
+      v[j] = read_number(*tuple->get(j), part);
     }
     out.push_back(v);
+  }
+  return out;
+}
+
+// The [[reaction]] tables (or an inline array of tables from --set): each table's keys and
+// their types here, their ranges in case_validate.cpp. The enum order must match RateLaw.
+std::vector<Reaction> read_reactions(const toml::node& n, const ValueSource& src) {
+  const auto* a = n.as_array();
+  if (!a) fail(src, "an array of tables ([[reaction]] sections)", n);
+  const std::vector<std::string> laws = {"first_order", "nth_order", "michaelis_menten"};
+  std::vector<Reaction> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    ValueSource item = src;
+    item.key = src.key + "[" + std::to_string(i) + "]";
+    item.raw.reset();
+    const auto* t = a->get(i)->as_table();
+    if (!t) fail(item, "a table ([[reaction]] with law, k, order, km, zones)", *a->get(i));
+    Reaction r;
+    for (const auto& [name, v] : *t) {
+      ValueSource f = item;
+      f.key = item.key + "." + std::string(name.str());
+      if (name == "law") {
+        const std::string law = read_string(v, f);
+        const auto it = std::find(laws.begin(), laws.end(), law);
+        if (it == laws.end())
+          throw CaseError(f.file, f.key,
+                          "expected one of \"first_order\" | \"nth_order\" | "
+                          "\"michaelis_menten\", got \"" +
+                              law + "\"");
+        r.law = static_cast<RateLaw>(it - laws.begin());
+      } else if (name == "k") {
+        r.k = read_number(v, f);
+      } else if (name == "order") {
+        r.order = read_number(v, f);
+      } else if (name == "km") {
+        r.km = read_number(v, f);
+      } else if (name == "zones") {
+        for (const auto& z : read_tuples<5>(v, f, "a zone [x0, x1, y0, y1, factor]", "zones",
+                                            "[[20.0, 40.0, -5.0, 5.0, 10.0]]"))
+          r.zones.push_back({z[0], z[1], z[2], z[3], z[4]});
+      } else {
+        throw CaseError(f.file, f.key,
+                        "unknown key; a [[reaction]] table has law, k, order, km and zones "
+                        "(cases/README.md)");
+      }
+    }
+    out.push_back(r);
   }
   return out;
 }
@@ -206,7 +257,13 @@ std::vector<KeyDef> make_keys() {
       "species.feed.base", [](Case & c) -> auto& { return c.species.feed.base; }));
   k.push_back({"species.feed.table", "an array of [t, C] pairs",
                [](Case& c, const toml::node& n, const ValueSource& s) {
-                 c.species.feed.table = read_pair_list(n, s);
+                 c.species.feed.table = read_tuples<2>(n, s, "a pair [t, C] of two numbers",
+                                                       "[t, C] pairs", "[[0.0, 0.0], [0.1, 2.0]]");
+               }});
+
+  k.push_back({"reaction", "an array of tables ([[reaction]])",
+               [](Case& c, const toml::node& n, const ValueSource& s) {
+                 c.reactions = read_reactions(n, s);
                }});
 
   k.push_back(number(

@@ -135,8 +135,11 @@ Case load_case_text(const std::string& text, const std::filesystem::path& file,
   c.name = file.stem().string();  // `name` is optional: the file name without .toml
   std::vector<Entry> entries;
   collect(doc, "", name, entries);
-  bool skin_given = false;
-  for (const Entry& e : entries) skin_given = skin_given || e.key == "particles.skin";
+  bool skin_given = false, k_given = false;
+  for (const Entry& e : entries) {
+    skin_given = skin_given || e.key == "particles.skin";
+    k_given = k_given || e.key == "species.k";
+  }
   apply_entries(c, std::move(entries), name);
 
   std::set<std::string> overridden;
@@ -144,6 +147,9 @@ Case load_case_text(const std::string& text, const std::filesystem::path& file,
   // The list skin's default depends on the flow (case.hpp, Particles::kPrescribedSkin).
   if (!skin_given && overridden.count("particles.skin") == 0 && c.flow == Flow::prescribed)
     c.particles.skin = Case::Particles::kPrescribedSkin;
+  // species.k's default (1.462 1/s, the paper's) is the reaction of a case without
+  // [[reaction]] tables; with them, only what they say reacts unless species.k is given.
+  if (!c.reactions.empty() && !k_given && overridden.count("species.k") == 0) c.species.k = 0.0;
   if (const auto p = case_detail::find_problem(c)) {
     // A value that came from --set is blamed on --set, not on the file.
     const bool from_set = overridden.count(p->key.substr(0, p->key.find('['))) > 0;

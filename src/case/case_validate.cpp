@@ -165,6 +165,32 @@ void check_feed(Checker& k, const Case& c) {
             with + "(the warm start is the steady state of a constant feed), got true");
 }
 
+// The [[reaction]] tables (species/reaction_kinetics.hpp).
+void check_reactions(Checker& k, const Case& c) {
+  for (std::size_t i = 0; i < c.reactions.size(); ++i) {
+    const Reaction& r = c.reactions[i];
+    std::string key = "reaction[";
+    key.append(std::to_string(i)).append("].");
+    k.range(key + "k", r.k, 0.0, false, kMaxStateValue, false);
+    // Orders of real rate laws lie in [0, 3]; 5 leaves room and keeps C^n finite in double.
+    if (r.law == RateLaw::nth_order) k.range(key + "order", r.order, 0.0, false, 5.0, false);
+    if (r.law == RateLaw::michaelis_menten)
+      k.range(key + "km", r.km, 0.0, false, kMaxStateValue, false);
+    for (std::size_t z = 0; z < r.zones.size(); ++z) {
+      const Reaction::Zone& zone = r.zones[z];
+      std::string zk = key + "zones[";
+      zk.append(std::to_string(z)).append("]");
+      std::string box = "expected x0 < x1 and y0 < y1, got [";
+      box.append(num(zone.x0)).append(", ").append(num(zone.x1)).append(", ");
+      box.append(num(zone.y0)).append(", ").append(num(zone.y1)).append("]");
+      k.require(std::isfinite(zone.x0) && std::isfinite(zone.x1) && std::isfinite(zone.y0) &&
+                    std::isfinite(zone.y1) && zone.x0 < zone.x1 && zone.y0 < zone.y1,
+                zk, box);
+      k.range(zk + "[4]", zone.factor, 0.0, false, kMaxStateValue, false);
+    }
+  }
+}
+
 void check_time_output(Checker& k, const Case& c) {
   const auto& t = c.time;
   k.positive("time.t_end", t.t_end);
@@ -209,6 +235,7 @@ std::optional<Problem> find_problem(const Case& c) {
   check_geometry(k, c);
   check_fluid_species(k, c);
   check_feed(k, c);
+  check_reactions(k, c);
   check_time_output(k, c);
   return k.problem;
 }
@@ -234,6 +261,17 @@ const char* to_string(FeedShape f) {
       return "pulse";
     case FeedShape::table:
       return "table";
+  }
+  return "?";
+}
+const char* to_string(RateLaw r) {
+  switch (r) {
+    case RateLaw::first_order:
+      return "first_order";
+    case RateLaw::nth_order:
+      return "nth_order";
+    case RateLaw::michaelis_menten:
+      return "michaelis_menten";
   }
   return "?";
 }

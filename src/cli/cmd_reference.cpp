@@ -99,7 +99,13 @@ int run_reference(const ReferenceOptions& o) {
   const std::filesystem::path dir = o.out_dir.empty()
                                         ? std::filesystem::path("runs") / ("reference_" + c.name)
                                         : std::filesystem::path(o.out_dir);
-  const ref::Problem p = ref::problem_from_case(c);
+  ref::Problem p;
+  try {
+    p = ref::problem_from_case(c);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "adrsph reference: " << o.case_file << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
   ref::SolverOptions so;
   so.solver = o.solver;
   so.limiter = o.limiter;

@@ -37,6 +37,9 @@ void print_summary(std::ostream& os, const Case& c, const RunResult& r, const Su
      << fmt("%g", c.peclet()) << " (D = " << fmt("%g", c.species.D)
      << " mm^2/s, k = " << fmt("%g", c.species.k) << " 1/s), dx " << fmt("%g", c.particles.dx)
      << " mm\n"
+     << (c.reactions.empty() ? std::string()
+                             : "  reactions: " + std::to_string(c.reactions.size()) +
+                                   " [[reaction]] table(s) besides species.k\n")
      << "  particles " << r.n_particles << " (fluid " << r.n_fluid << "), threads " << s.threads
      << "\n"
      << "  steps " << r.steps << ", simulated " << fmt("%.4g", r.t_reached) << " s of "

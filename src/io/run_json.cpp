@@ -36,6 +36,17 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["Pe"] = number(c.peclet());
   j["D"] = c.species.D;
   j["k"] = c.species.k;
+  // The [[reaction]] tables (empty: species.k alone).
+  j["reactions"] = Json::array();
+  for (const Reaction& r : c.reactions) {
+    Json zones = Json::array();
+    for (const Reaction::Zone& z : r.zones) zones.push_back({z.x0, z.x1, z.y0, z.y1, z.factor});
+    j["reactions"].push_back({{"law", to_string(r.law)},
+                              {"k", r.k},
+                              {"order", r.order},
+                              {"km", r.km},
+                              {"zones", zones}});
+  }
   j["dx"] = c.particles.dx;
   j["particles"] = r.n_particles;
   j["fluid_particles"] = r.n_fluid;

@@ -1,5 +1,8 @@
 // The reactor problem of a case (docs/benchmark.md, section 1): parabolic profile with
 // u_max = 2 u_bulk.
+#include <stdexcept>
+#include <string>
+
 #include "adrsph/reference.hpp"
 
 namespace adrsph::reference {
@@ -12,6 +15,11 @@ std::function<double(double)> parabolic_profile(double u_max, double half_width)
 }
 
 Problem problem_from_case(const Case& c) {
+  if (!c.reactions.empty())
+    throw std::invalid_argument(
+        "the reference solves first-order kinetics (species.k) only; this case has " +
+        std::to_string(c.reactions.size()) +
+        " [[reaction]] table(s), which only the SPH engine takes so far");
   Problem p;
   p.length = c.geometry.length;
   p.half_width = c.geometry.half_width;
