@@ -142,13 +142,13 @@ TEST(ValidationDetail, BadValueInTheFileIsBlamedOnTheFile) {
 
 TEST(ValidationDetail, DefaultCaseIsValid) {
   Case c;
-  c.name = "x";
+  c.name = std::string("x");  // (not = "x": GCC 12 -Wrestrict misfires on that inlined _M_replace)
   EXPECT_NO_THROW(validate_case(c));
 }
 
 TEST(ValidationDetail, CaseBuiltInCode) {
   Case c;
-  c.name = "x";
+  c.name = std::string("x");  // (not = "x": GCC 12 -Wrestrict misfires on that inlined _M_replace)
   c.species.D = -1.0;
   try {
     validate_case(c);
@@ -161,7 +161,7 @@ TEST(ValidationDetail, CaseBuiltInCode) {
 
 TEST(ValidationDetail, NanIsRejected) {
   Case c;
-  c.name = "x";
+  c.name = std::string("x");  // (not = "x": GCC 12 -Wrestrict misfires on that inlined _M_replace)
   c.fluid.nu = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(validate_case(c), CaseError);
 }
