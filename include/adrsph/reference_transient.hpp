@@ -37,6 +37,8 @@ struct TransientOptions {
   double dt = 0.01;           // [s]; rounded down to sample_interval / n (n integer)
   double tolerance = 1e-10;   // deferred correction of a step: max |dC| < tolerance * C_scale
   int max_corrections = 100;  // per step
+  // Called after every outlet sample with the time reached (progress reports); may be empty.
+  std::function<void(double t)> on_sample;
 };
 
 // The default step of a case (docs/reference.md, "Transient mode"): a fraction of the

@@ -184,7 +184,6 @@ Command register_reference(CLI::App& app) {
       "Exit codes: 0 ok, 1 I/O error, 2 bad input (case file, key, value, option), 3 the "
       "solve failed or did not converge.");
   auto o = std::make_shared<ReferenceOptions>();
-
   sub->add_option("case", o->case_file, "Case file (TOML)")->required();
   sub->add_option("--set", o->overrides,
                   "Override a case key, e.g. --set species.D=0.1 (dotted key, TOML value). "
@@ -195,7 +194,9 @@ Command register_reference(CLI::App& app) {
                  ->check(CLI::Range(2, 1 << 20));
   auto* ny = sub->add_option("--ny", o->ny, "Cells across y (default 160; 40 with --transient)")
                  ->check(CLI::Range(1, 1 << 20));
-  sub->add_option("--out", o->out_dir, "Output directory (default runs/reference_<case name>)")
+  sub->add_option("--out", o->out_dir,
+                  "Output directory (default runs/reference_<case name>, with --transient "
+                  "runs/reference_transient_<case name>)")
       ->check(kNonEmptyPath);
   sub->add_flag("--convergence", o->convergence,
                 "Solve on nx/4, nx/2, nx and 2nx (x ny likewise; 3200x320 takes ~40 s and "

@@ -63,8 +63,17 @@ int run_transient_reference(const TransientRequest& q, const Case& c) {
   opt.solver = q.solver;
   opt.limiter = q.limiter;
   opt.dt = q.dt > 0.0 ? q.dt : ref::default_transient_dt(c);
+  // A line on stderr at every tenth of t_end: runs on fine grids take minutes.
+  const auto start = std::chrono::steady_clock::now();
+  double next_report = 0.1 * c.time.t_end;
+  opt.on_sample = [&](double t) {
+    if (t < next_report - 1e-12) return;
+    next_report += 0.1 * c.time.t_end;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::fprintf(stderr, "  t = %.4g / %.4g s, %.0f s\n", t, c.time.t_end, elapsed);
+  };
 
-  const auto t0 = std::chrono::steady_clock::now();
   ref::TransientSolution s;
   try {
     s = ref::solve_transient(p, q.nx, q.ny, opt);
@@ -75,7 +84,8 @@ int run_transient_reference(const TransientRequest& q, const Case& c) {
     std::cerr << "adrsph reference: " << e.what() << "\n";
     return kExitRunFailed;
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   print_summary(s, p.space);
   try {
     fs::create_directories(q.out_dir);

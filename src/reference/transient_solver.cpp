@@ -216,6 +216,7 @@ TransientSolution solve_transient(const TransientProblem& p, int nx, int ny,
       s.c.assign(now.data(), now.data() + now.size());
       const double t_sample = p.sample_interval * static_cast<double>(n / per_sample);
       out.outlet.push_back(outlet_of(s, u_cell, t_sample));
+      if (opt.on_sample) opt.on_sample(t_sample);
     }
   }
   s.c.assign(now.data(), now.data() + now.size());
