@@ -12,6 +12,7 @@
 #include "adrsph/probes.hpp"
 #include "analysis/dispersion_model.hpp"
 #include "analysis/rtd.hpp"
+#include "analysis/rtd_against.hpp"
 #include "analysis/rtd_report.hpp"
 #include "io_test_util.hpp"
 #include "species/inlet_feed.hpp"
@@ -211,7 +212,7 @@ TEST(RtdMoments, WarningsSayWhatToChange) {
   EXPECT_NEAR(r.mean_residence_time, 0.75, 1e-6);  // the moments need no model
   EXPECT_THAT(rtd_warnings(r, still).back(), HasSubstr("species.D = 0"));
   EXPECT_THAT(analysis::rtd_json(r, still), HasSubstr("\"L1\": null"));
-  EXPECT_THAT(analysis::rtd_csv(r), HasSubstr("\n8,0.5,0,,\n"));
+  EXPECT_THAT(analysis::rtd_csv(r), HasSubstr("\n8,0.5,0,,,\n"));
 }
 
 // The L1 distance of normalised curves: 2 less the overlap for curves that hardly overlap
@@ -304,6 +305,99 @@ TEST(RtdModel, TableFeedModelAddsTheMoments) {
   EXPECT_NEAR(m.variance, feed.variance + e.variance(), tol * e.variance());
 }
 
+// ---- against the transient reference ----
+
+// The run's own series as the reference: the same moments, and the shapes at distance 0.
+TEST(RtdAgainst, IdenticalSeriesAreAtDistanceZero) {
+  const Case c = pulse_case();
+  const auto rows = model_outlet(c, 0.005, 8.0);
+  const analysis::Rtd r = analysis::residence_time_distribution(rows, c);
+  const analysis::RtdAgainst a = analysis::against_reference(r, c, rows, c);
+  EXPECT_EQ(a.l1, 0.0);
+  EXPECT_EQ(a.mean_residence_time, r.mean_residence_time);
+  EXPECT_EQ(a.variance, r.variance);
+  EXPECT_EQ(a.mean_over_reference_minus_1, 0.0);
+  EXPECT_EQ(a.variance_over_reference_minus_1, 0.0);
+  EXPECT_EQ(a.recovery, r.recovery);
+  ASSERT_EQ(a.c_ref.size(), r.t.size());
+  for (std::size_t i = 0; i < r.t.size(); ++i) EXPECT_EQ(a.c_ref[i], r.c_out[i]);
+  EXPECT_TRUE(a.case_differences.empty());
+}
+
+// A reference whose response arrives delta = 0.05 s later, for the same feed, sampled five
+// times as often (interpolated onto the run's samples): its mean residence time is the run's
+// plus delta, so the run's relative difference is t_m / (t_m + delta) - 1 = -6.25 %; the
+// variance is the same; L1 is the distance of the two shapes, int |E(t) - E(t - delta)| dt,
+// computed here on a fine grid. Tolerances: the trapezoid rule's (dt / sigma)^2 / 12 at the
+// run's dt = 0.005 s (3e-5), and the linear interpolation's dt^2 max|E''| / 8 for L1.
+TEST(RtdAgainst, ShiftedReferenceGivesTheShiftAsMeanDifference) {
+  const Case c = pulse_case();
+  const double delta = 0.05;
+  const analysis::Rtd r = analysis::residence_time_distribution(model_outlet(c, 0.005, 8.0), c);
+  const InverseGaussian e = analysis::taylor_aris(c).residence;
+  std::vector<OutletRow> late;
+  std::vector<double> t, g_run, g_ref;
+  for (int i = 0; i <= 9000; ++i) {
+    const double ti = 0.001 * i;
+    const double v = 0.5 + analysis::model_outlet_excess(c.species, e, ti - delta);
+    late.push_back({ti, v, v});
+    if (ti > 8.0) continue;
+    t.push_back(ti);
+    g_run.push_back(analysis::model_outlet_excess(c.species, e, ti));
+    g_ref.push_back(v - 0.5);
+  }
+  const analysis::RtdAgainst a = analysis::against_reference(r, c, late, c);
+  EXPECT_NEAR(a.mean_residence_time, 0.75 + delta, 1e-4);
+  EXPECT_NEAR(a.variance, r.variance, 1e-4 * r.variance);
+  EXPECT_NEAR(a.mean_over_reference_minus_1, 0.75 / (0.75 + delta) - 1.0, 2e-4);
+  EXPECT_NEAR(a.variance_over_reference_minus_1, 0.0, 2e-4);
+  const double area = analysis::curve_moments(t, g_run).area;
+  for (double& v : g_run) v /= area;
+  for (double& v : g_ref) v /= area;
+  const double l1 = analysis::l1_distance(t, g_run, g_ref);
+  EXPECT_GT(l1, 0.1);
+  EXPECT_NEAR(a.l1, l1, 2e-3 * l1);
+}
+
+// The reference must cover the run's first and last sample; otherwise the error says which
+// times each covers and what to do.
+TEST(RtdAgainst, ReferenceMustCoverTheRun) {
+  const Case c = pulse_case();
+  const auto rows = model_outlet(c, 0.005, 8.0);
+  const analysis::Rtd r = analysis::residence_time_distribution(rows, c);
+  auto message = [&](const std::vector<OutletRow>& ref) {
+    try {
+      analysis::against_reference(r, c, ref, c);
+    } catch (const analysis::RtdInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::vector<OutletRow> short_ref(rows.begin(), rows.begin() + 1201);  // to 6 s
+  EXPECT_THAT(message(short_ref), HasSubstr("cover t = 0 to 6 s, not the run's t = 0 to 8 s"));
+  EXPECT_THAT(message(short_ref), HasSubstr("time.t_end >= 8"));
+  const std::vector<OutletRow> late_start(rows.begin() + 1, rows.end());
+  EXPECT_THAT(message(late_start), HasSubstr("cover t = 0.005 to 8 s"));
+  EXPECT_THAT(message({rows[0], rows[1]}), HasSubstr("at least 3"));
+}
+
+// A reference solved for another case is named key by key.
+TEST(RtdAgainst, OtherCaseIsNamed) {
+  const Case c = pulse_case();
+  const auto rows = model_outlet(c, 0.005, 8.0);
+  const analysis::Rtd r = analysis::residence_time_distribution(rows, c);
+  Case other = c;
+  other.species.D = 1000.0;
+  other.species.feed.width = 0.1;
+  const analysis::RtdAgainst a = analysis::against_reference(r, c, rows, other);
+  ASSERT_EQ(a.case_differences.size(), 2u);
+  EXPECT_EQ(a.case_differences[0], "species.D: run 10, reference 1000");
+  EXPECT_EQ(a.case_differences[1], "species.feed.width: run 0.05, reference 0.1");
+  // Its own feed corrects its moments: width 0.1 s has mean 0.05 s later than 0.05 s's.
+  EXPECT_NEAR(a.mean_residence_time, r.mean_residence_time - 0.025, 1e-12);
+  EXPECT_THAT(analysis::rtd_markdown(r, c, &a), HasSubstr("another case: species.D"));
+}
+
 // ---- the command ----
 
 constexpr const char* kCaseText = R"(name = "rtd_cli"
@@ -364,7 +458,9 @@ TEST(RtdCommand, WritesTheMeanResidenceTime) {
   EXPECT_FALSE(j["truncated"].get<bool>());
   EXPECT_LT(j["L1"].get<double>(), 1e-6);
   const std::string csv = test::read_file(dir / "run" / "rtd.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t_s,C_out,E_per_s,C_model,C_model_closed");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t_s,C_out,E_per_s,C_model,C_model_closed,C_reference");
+  EXPECT_EQ(csv.substr(csv.size() - 2), ",\n");  // no reference: C_reference empty
+  EXPECT_TRUE(j["reference"].is_null());
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1602);
   EXPECT_EQ(test::read_file(dir / "run" / "rtd.md").find("# Residence-time distribution"), 0u);
   EXPECT_FALSE(fs::exists(dir / "run" / "rtd.png"));
@@ -452,12 +548,51 @@ TEST(RtdCommand, TooFewSamplesOrNoTracerExit2) {
   EXPECT_FALSE(fs::exists(dir / "run" / "rtd.json"));
 }
 
+// --against: the reference (here the run's own outlet, with its case.toml and run.json as
+// `adrsph reference --transient` writes them) in rtd.md, rtd.json and the C_reference column.
+TEST(RtdCommand, AgainstAddsTheReference) {
+  test::TempDir dir;
+  make_run_dir(dir / "run", cli_case());
+  make_run_dir(dir / "ref", cli_case());
+  const auto r = test::run_adrsph("rtd run --no-plot --against ref", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("## Against the transient reference"));
+  EXPECT_THAT(r.out, HasSubstr("| mean residence time t_m [s] | 0.75 | 0.75 | +0.00% |"));
+  const auto j = read_json(dir / "run" / "rtd.json");
+  EXPECT_EQ(j["reference"]["L1"].get<double>(), 0.0);
+  EXPECT_NEAR(j["reference"]["mean_residence_time"].get<double>(), 0.75, 1e-4);
+  EXPECT_EQ(j["reference"]["samples"].get<int>(), 1601);
+  EXPECT_TRUE(j["reference"]["case_differences"].empty());
+  const std::string csv = test::read_file(dir / "run" / "rtd.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t_s,C_out,E_per_s,C_model,C_model_closed,C_reference");
+  // Each row ends with C_reference = C_out (the same series): at t = 8, the base 0.5.
+  EXPECT_EQ(csv.substr(csv.rfind('\n', csv.size() - 2) + 1, 5), "8,0.5");
+  EXPECT_EQ(csv.substr(csv.size() - 5), ",0.5\n");
+}
+
+TEST(RtdCommand, AgainstMissingOrShortReferenceExits2) {
+  test::TempDir dir;
+  make_run_dir(dir / "run", cli_case());
+  fs::create_directories(dir / "ref");
+  auto r = test::run_adrsph("rtd run --no-plot --against ref", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("ref/outlet.csv: not found"));
+  EXPECT_THAT(r.err, HasSubstr("--transient"));
+  // A bare outlet series (no case.toml: the run's case) that ends at 4 s.
+  write_outlet_csv(dir / "ref" / "outlet.csv", model_outlet(cli_case(), 0.005, 4.0));
+  r = test::run_adrsph("rtd run --no-plot --against ref", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("ref/outlet.csv"));
+  EXPECT_THAT(r.err, HasSubstr("cover t = 0 to 4 s, not the run's t = 0 to 8 s"));
+  EXPECT_FALSE(fs::exists(dir / "run" / "rtd.json"));
+}
+
 TEST(RtdCommand, HelpSaysWhatItNeeds) {
   test::TempDir dir;
   const auto r = test::run_adrsph("rtd --help", dir.path());
   EXPECT_EQ(r.exit_code, 0);
   for (const char* s : {"outlet_interval", "\"pulse\"", "outlet.csv", "run.json", "--out",
-                        "--no-plot", "Exit codes"})
+                        "--no-plot", "--against", "Exit codes"})
     EXPECT_THAT(r.out, HasSubstr(s));
 }
 

@@ -6,7 +6,8 @@ rtd.json (the feed's base and the model's area on the same samples), and draws
 E_out = (C_out - base) / area against the model's (C_model - base) / model area (semi-infinite
 medium) and the model on the channel's boundary conditions (C_model_closed, normalised by its
 own area on the samples), with the measured outlet mean and the model's (feed mean + V/Q)
-marked (docs/rtd.md).
+marked (docs/rtd.md). With `adrsph rtd --against`, also the transient finite-volume reference's
+normalised response (C_reference - base) / its own area (rtd.json "reference").
 
 usage: plot_rtd.py RTD.csv [--json RTD.json] [--out FILE.png] [--title TEXT]
 """
@@ -22,6 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLUMNS = ["t_s", "C_out", "E_per_s", "C_model", "C_model_closed"]
+OPTIONAL = ["C_reference"]  # filled by `adrsph rtd --against` only; absent in older files
 
 
 def read_rtd(path):
@@ -33,7 +35,8 @@ def read_rtd(path):
     if missing:
         sys.exit(f"{path}: missing columns {missing}")
     # The model columns are empty where there is no model (species.D = 0).
-    return {k: [float(r[k]) if r[k] else None for r in rows] for k in COLUMNS}
+    present = COLUMNS + [c for c in OPTIONAL if c in rows[0]]
+    return {k: [float(r[k]) if r[k] else None for r in rows] for k in present}
 
 
 def main():
@@ -62,6 +65,11 @@ def main():
         if area:
             ax.plot(t, [v / area for v in closed], "-.",
                     label="Taylor-Aris, channel's boundary conditions")
+    reference = info.get("reference")
+    c_ref = data.get("C_reference")
+    if reference and c_ref and all(c is not None for c in c_ref):
+        ax.plot(data["t_s"], [(c - base) / reference["outlet"]["area"] for c in c_ref], "-",
+                color="k", lw=1.0, label="transient finite-volume reference")
     ax.axvline(info["outlet"]["mean"], color="C0", lw=0.8, ls=":", label="run: outlet mean")
     if info["feed"]["mean"] is not None and info["space_time"] is not None:
         ax.axvline(info["feed"]["mean"] + info["space_time"], color="C1", lw=0.8, ls=":",

@@ -41,6 +41,46 @@ std::string feed_line(const Rtd& r, const Case& c) {
   return s;
 }
 
+Json reference_json(const RtdAgainst& a) {
+  return Json{{"samples", a.samples},
+              {"t_first", a.t_first},
+              {"t_last", a.t_last},
+              {"feed", Json{{"amount", number(a.feed.amount)},
+                            {"mean", number(a.feed.mean)},
+                            {"variance", number(a.feed.variance)}}},
+              {"outlet", Json{{"area", number(a.outlet.area)},
+                              {"mean", number(a.outlet.mean)},
+                              {"variance", number(a.outlet.variance)}}},
+              {"mean_residence_time", number(a.mean_residence_time)},
+              {"variance", number(a.variance)},
+              {"recovery", number(a.recovery)},
+              {"mean_over_reference_minus_1", number(a.mean_over_reference_minus_1)},
+              {"variance_over_reference_minus_1", number(a.variance_over_reference_minus_1)},
+              {"L1", number(a.l1)},
+              {"case_differences", a.case_differences}};
+}
+
+// The section "Against the transient reference" of rtd.md (docs/rtd.md).
+std::string reference_markdown(const Rtd& r, const RtdAgainst& a) {
+  std::string md = "\n## Against the transient reference\n\n";
+  md += "Reference: " + std::to_string(a.samples) +
+        " samples of C_flow_mean, t = " + g4(a.t_first) + " to " + g4(a.t_last) +
+        " s, moments feed-corrected like the run's.\n\n";
+  md += "| quantity | run | reference | difference |\n|---|---|---|---|\n";
+  md += "| mean residence time t_m [s] | " + g4(r.mean_residence_time) + " | " +
+        g4(a.mean_residence_time) + " | " + percent(a.mean_over_reference_minus_1) + " |\n";
+  md += "| variance s^2 [s^2] | " + g4(r.variance) + " | " + g4(a.variance) + " | " +
+        percent(a.variance_over_reference_minus_1) + " |\n";
+  md += "| recovery | " + fmt("%.4f", r.recovery) + " | " + fmt("%.4f", a.recovery) + " | " +
+        percent(r.recovery - a.recovery) + " (absolute) |\n\n";
+  md += "Shape: L1 = int |E_run - E_ref| dt = " + fmt("%.3g", a.l1) +
+        " on the run's samples (the reference interpolated linearly in t); 0: the same shape, "
+        "2: no overlap.\n";
+  for (const std::string& d : a.case_differences)
+    md += "**Warning:** the reference was solved for another case: " + d + ".\n";
+  return md;
+}
+
 }  // namespace
 
 std::vector<std::string> rtd_warnings(const Rtd& r, const Case& c) {
@@ -68,8 +108,8 @@ std::vector<std::string> rtd_warnings(const Rtd& r, const Case& c) {
   return w;
 }
 
-std::string rtd_csv(const Rtd& r) {
-  std::string text = "t_s,C_out,E_per_s,C_model,C_model_closed\n";
+std::string rtd_csv(const Rtd& r, const RtdAgainst* against) {
+  std::string text = "t_s,C_out,E_per_s,C_model,C_model_closed,C_reference\n";
   char buf[96];
   for (std::size_t i = 0; i < r.t.size(); ++i) {
     std::snprintf(buf, sizeof buf, "%.10g,%.10g,%.10g,", r.t[i], r.c_out[i], r.e_out[i]);
@@ -83,12 +123,14 @@ std::string rtd_csv(const Rtd& r) {
     cell(r.c_model[i]);
     text += ',';
     cell(r.c_closed[i]);
+    text += ',';
+    if (against) cell(against->c_ref[i]);
     text += '\n';
   }
   return text;
 }
 
-std::string rtd_json(const Rtd& r, const Case& c) {
+std::string rtd_json(const Rtd& r, const Case& c, const RtdAgainst* against) {
   const auto& f = c.species.feed;
   const bool pulse = f.shape == FeedShape::pulse;
   Json j;
@@ -136,11 +178,12 @@ std::string rtd_json(const Rtd& r, const Case& c) {
                                   {"L1", number(r.closed_l1)}};
   j["mean_over_closed_minus_1"] = number(r.mean_over_closed_minus_1());
   j["variance_over_closed_minus_1"] = number(r.variance_over_closed_minus_1());
+  j["reference"] = against ? reference_json(*against) : Json(nullptr);
   j["warnings"] = rtd_warnings(r, c);
   return j.dump(2) + "\n";
 }
 
-std::string rtd_markdown(const Rtd& r, const Case& c) {
+std::string rtd_markdown(const Rtd& r, const Case& c, const RtdAgainst* against) {
   std::string md = "# Residence-time distribution: " + c.name + "\n\n";
   md += feed_line(r, c);
   md += "Outlet: " + std::to_string(r.t.size()) +
@@ -189,6 +232,7 @@ std::string rtd_markdown(const Rtd& r, const Case& c) {
   const auto warnings = rtd_warnings(r, c);
   if (!warnings.empty()) md += "\n";
   for (const std::string& w : warnings) md += "**Warning:** " + w + ".\n";
+  if (against) md += reference_markdown(r, *against);
   return md;
 }
 

@@ -1,6 +1,7 @@
 // `adrsph reference`: the steady finite-volume reference of a case (docs/benchmark.md, section 5,
 // issue 4). Writes DIR/probes.csv, DIR/stations.csv, DIR/reference.h5, DIR/reference.json;
-// with --convergence also solves on nx/4, nx/2, nx, 2nx and prints the convergence table.
+// with --convergence also solves on nx/4, nx/2, nx, 2nx and prints the convergence table;
+// with --transient solves in time instead (cli/reference_transient.cpp).
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include "adrsph/probes.hpp"
 #include "adrsph/reference.hpp"
 #include "cli/commands.hpp"
+#include "cli/reference_transient.hpp"
 
 namespace adrsph::cli {
 namespace {
@@ -25,6 +27,9 @@ struct ReferenceOptions {
   int nx = 1600, ny = 160;
   std::string out_dir;
   bool convergence = false;
+  bool transient = false;
+  double dt = 0.0;                          // --dt [s], transient only; 0: the default
+  bool nx_given = false, ny_given = false;  // on the command line (--transient has its own)
   ref::LinearSolver solver = ref::LinearSolver::sparse_lu;
   ref::Limiter limiter = ref::Limiter::van_leer;
 };
@@ -85,7 +90,21 @@ int run_convergence(const ReferenceOptions& o, const ref::Problem& p, const ref:
   return kExitOk;
 }
 
+// The transient mode's default grid (docs/reference.md, "Transient mode": its convergence).
+constexpr int kTransientNx = 400, kTransientNy = 40;
+
 int run_reference(const ReferenceOptions& o) {
+  if (o.transient && o.convergence) {
+    std::cerr << "adrsph reference: --transient and --convergence exclude each other: "
+                 "--convergence studies the steady solution; the transient solution's "
+                 "convergence is measured by running --transient at two --nx/--ny and --dt "
+                 "(docs/reference.md, \"Transient mode\")\n";
+    return kExitBadInput;
+  }
+  if (o.dt > 0.0 && !o.transient) {
+    std::cerr << "adrsph reference: --dt needs --transient (the steady solve has no time step)\n";
+    return kExitBadInput;
+  }
   Case c;
   try {
     c = load_case(o.case_file, o.overrides);
@@ -95,6 +114,20 @@ int run_reference(const ReferenceOptions& o) {
   } catch (const std::exception& e) {
     std::cerr << "adrsph reference: " << o.case_file << ": " << e.what() << "\n";
     return kExitBadInput;
+  }
+  if (o.transient) {
+    TransientRequest q;
+    q.case_file = o.case_file;
+    q.overrides = o.overrides;
+    q.nx = o.nx_given ? o.nx : kTransientNx;
+    q.ny = o.ny_given ? o.ny : kTransientNy;
+    q.dt = o.dt;
+    q.out_dir = o.out_dir.empty()
+                    ? std::filesystem::path("runs") / ("reference_transient_" + c.name)
+                    : std::filesystem::path(o.out_dir);
+    q.solver = o.solver;
+    q.limiter = o.limiter;
+    return run_transient_reference(q, c);
   }
   const std::filesystem::path dir = o.out_dir.empty()
                                         ? std::filesystem::path("runs") / ("reference_" + c.name)
@@ -149,6 +182,11 @@ Command register_reference(CLI::App& app) {
       "D lap C - k C on a structured grid, van Leer TVD advection, Eigen SparseLU. Writes "
       "DIR/probes.csv, stations.csv, reference.h5, reference.json. DIR defaults to "
       "runs/reference_<case name>.\n"
+      "With --transient: dC/dt + u dC/dx = D lap C - k C from species.c_init with the inlet "
+      "[species.feed] to time.t_end (BDF2), writing the outlet series DIR/outlet.csv every "
+      "output.outlet_interval (which must be > 0), DIR/case.toml and DIR/run.json, which "
+      "`adrsph rtd DIR` reads like a run; DIR defaults to runs/reference_transient_<case "
+      "name>.\n"
       "Exit codes: 0 ok, 1 I/O error, 2 bad input (case file, key, value, option), 3 the "
       "solve failed or did not converge.");
   auto o = std::make_shared<ReferenceOptions>();
@@ -157,15 +195,29 @@ Command register_reference(CLI::App& app) {
                   "Override a case key, e.g. --set species.D=0.1 (dotted key, TOML value). "
                   "Repeatable")
       ->allow_extra_args(false);
-  sub->add_option("--nx", o->nx, "Cells along x (default 1600, the paper's mesh)")
-      ->check(CLI::Range(2, 1 << 20));
-  sub->add_option("--ny", o->ny, "Cells across y (default 160)")->check(CLI::Range(1, 1 << 20));
-  sub->add_option("--out", o->out_dir, "Output directory (default runs/reference_<case name>)")
+  auto* nx = sub->add_option("--nx", o->nx,
+                             "Cells along x (default 1600, the paper's mesh; 400 with --transient)")
+                 ->check(CLI::Range(2, 1 << 20));
+  auto* ny = sub->add_option("--ny", o->ny, "Cells across y (default 160; 40 with --transient)")
+                 ->check(CLI::Range(1, 1 << 20));
+  sub->add_option("--out", o->out_dir,
+                  "Output directory (default runs/reference_<case name>, with --transient "
+                  "runs/reference_transient_<case name>)")
       ->check(kNonEmptyPath);
   sub->add_flag("--convergence", o->convergence,
                 "Solve on nx/4, nx/2, nx and 2nx (x ny likewise; 3200x320 takes ~40 s and "
                 "2.3 GB), print station averages, relative changes, observed orders and "
                 "PASS/FAIL of the 1e-4 criterion; writes DIR/convergence.md");
+  sub->add_flag("--transient", o->transient,
+                "Solve in time from species.c_init with the inlet [species.feed] to time.t_end "
+                "(BDF2) and write the outlet series outlet.csv every output.outlet_interval, "
+                "case.toml and run.json: a directory `adrsph rtd` reads. Not with "
+                "--convergence");
+  sub->add_option("--dt", o->dt,
+                  "Time step of --transient [s] (default: from the feed's shortest feature and "
+                  "output.outlet_interval, docs/reference.md); rounded down to divide "
+                  "output.outlet_interval")
+      ->check(CLI::PositiveNumber);
   const std::map<std::string, ref::LinearSolver> solvers{
       {"lu", ref::LinearSolver::sparse_lu}, {"bicgstab", ref::LinearSolver::bicgstab_ilut}};
   sub->add_option("--solver", o->solver, "Linear solver: lu (SparseLU, default) or bicgstab")
@@ -175,7 +227,11 @@ Command register_reference(CLI::App& app) {
                                                      {"upwind", ref::Limiter::upwind}};
   sub->add_option("--limiter", o->limiter, "Advection: van_leer (default), minmod, upwind")
       ->transform(CLI::CheckedTransformer(limiters, CLI::ignore_case));
-  return {sub, [o] { return run_reference(*o); }};
+  return {sub, [o, nx, ny] {
+            o->nx_given = nx->count() > 0;
+            o->ny_given = ny->count() > 0;
+            return run_reference(*o);
+          }};
 }
 
 }  // namespace adrsph::cli

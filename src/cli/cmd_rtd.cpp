@@ -1,6 +1,7 @@
-// `adrsph rtd RUN_DIR [--out DIR]`: the residence-time distribution of a tracer-pulse run
-// (docs/rtd.md). Reads the run's case (case.toml with run.json's overrides) and its outlet in
-// time (outlet.csv); writes rtd.csv, rtd.json, rtd.md and rtd.png, and prints rtd.md.
+// `adrsph rtd RUN_DIR [--out DIR] [--against REF_DIR]`: the residence-time distribution of a
+// tracer-pulse run (docs/rtd.md). Reads the run's case (case.toml with run.json's overrides)
+// and its outlet in time (outlet.csv); writes rtd.csv, rtd.json, rtd.md and rtd.png, and
+// prints rtd.md. With --against, also the transient reference's outlet (REF_DIR/outlet.csv).
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "adrsph/case.hpp"
 #include "adrsph/probes.hpp"
 #include "analysis/rtd.hpp"
+#include "analysis/rtd_against.hpp"
 #include "analysis/rtd_report.hpp"
 #include "cli/commands.hpp"
 #include "cli/python_tools.hpp"
@@ -26,7 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RtdOptions {
-  std::string run_dir, out;
+  std::string run_dir, out, against;
   bool plot = true;
 };
 
@@ -65,6 +68,54 @@ void plot_rtd(const fs::path& csv, const fs::path& json, const fs::path& png,
               const std::string& title) {
   run_plot_script("plot_rtd.py",
                   {csv.string(), "--json", json.string(), "--out", png.string(), "--title", title});
+}
+
+// The transient reference of --against (docs/rtd.md, "Against the transient reference"):
+// REF_DIR/outlet.csv, and the case it was solved for, REF_DIR/case.toml with REF_DIR/run.json's
+// overrides (the run's case when REF_DIR holds no case.toml). On bad input, nothing and
+// `error` says what, naming the file.
+std::optional<analysis::RtdAgainst> compare_with_reference(const fs::path& ref_dir,
+                                                           const analysis::Rtd& r,
+                                                           const Case& run_case,
+                                                           std::string& error) {
+  const fs::path outlet_csv = ref_dir / "outlet.csv", case_file = ref_dir / "case.toml";
+  std::error_code ec;
+  if (!fs::exists(outlet_csv, ec)) {
+    error = outlet_csv.string() +
+            ": not found; --against needs the output directory of `adrsph reference CASE "
+            "--transient` (its outlet series)";
+    return std::nullopt;
+  }
+  Case ref_case = run_case;
+  if (fs::exists(case_file, ec)) {
+    const fs::path run_json = ref_dir / "run.json";
+    std::vector<std::string> overrides;
+    if (fs::exists(run_json, ec)) {
+      std::ifstream in(run_json, std::ios::binary);
+      if (!nlohmann::json::accept(in)) {
+        error = run_json.string() +
+                ": not valid JSON (its \"overrides\" are the --set values "
+                "the reference was solved with)";
+        return std::nullopt;
+      }
+      overrides = read_run_record(ref_dir).overrides.value_or(std::vector<std::string>{});
+    }
+    try {
+      ref_case = load_case(case_file, overrides);
+    } catch (const CaseError& e) {
+      error =
+          (e.file() == "--set" ? run_json.string() + ": overrides: " : std::string()) + e.what();
+      return std::nullopt;
+    }
+  }
+  try {
+    return analysis::against_reference(r, run_case, read_outlet_csv(outlet_csv), ref_case);
+  } catch (const analysis::RtdInputError& e) {
+    error = outlet_csv.string() + ": " + e.what();
+  } catch (const std::exception& e) {  // read_outlet_csv names the file and the line
+    error = e.what();
+  }
+  return std::nullopt;
 }
 
 int run_rtd(const RtdOptions& o) {
@@ -127,13 +178,21 @@ int run_rtd(const RtdOptions& o) {
     return bad_input(e.what());
   }
 
-  const std::string md = analysis::rtd_markdown(r, c);
+  std::optional<analysis::RtdAgainst> against;
+  if (!o.against.empty()) {
+    std::string error;
+    against = compare_with_reference(o.against, r, c, error);
+    if (!against) return bad_input(error);
+  }
+  const analysis::RtdAgainst* a = against ? &*against : nullptr;
+
+  const std::string md = analysis::rtd_markdown(r, c, a);
   std::cout << md;
   const fs::path out = o.out.empty() ? run_dir : fs::path(o.out);
   const fs::path csv = out / "rtd.csv", json = out / "rtd.json", md_file = out / "rtd.md";
   try {
     fs::create_directories(out);
-    write_all({{csv, analysis::rtd_csv(r)}, {json, analysis::rtd_json(r, c)}, {md_file, md}});
+    write_all({{csv, analysis::rtd_csv(r, a)}, {json, analysis::rtd_json(r, c, a)}, {md_file, md}});
   } catch (const std::exception& e) {
     std::cerr << "adrsph rtd: " << e.what() << "\n";
     return kExitIoError;
@@ -155,15 +214,24 @@ Command register_rtd(CLI::App& app) {
       "species.k = 0 for a conserved tracer) and output.outlet_interval > 0, long enough "
       "(time.t_end) for the outlet to return to species.feed.base. Reads RUN_DIR/case.toml "
       "with the --set values of RUN_DIR/run.json, and RUN_DIR/outlet.csv. Writes rtd.csv "
-      "(t_s,C_out,E_per_s,C_model), rtd.json (every figure), rtd.md (printed) and rtd.png "
+      "(t_s,C_out,E_per_s,C_model,C_model_closed,C_reference), rtd.json (every figure), rtd.md "
+      "(printed) and rtd.png "
       "(tools/plot_rtd.py, when a python3 with matplotlib is found; $ADRSPH_PYTHON "
       "overrides) into DIR, default RUN_DIR.\n"
       "Exit codes: 0 ok, 1 I/O error, 2 bad input (missing run directory, case.toml, run.json "
       "or outlet.csv, a feed that is not a pulse or a table, fewer than 3 samples, no tracer "
-      "at the outlet).");
+      "at the outlet; with --against, no REF_DIR/outlet.csv or one that does not cover the "
+      "run's times).");
   auto o = std::make_shared<RtdOptions>();
   sub->add_option("run_dir", o->run_dir, "Run directory (adrsph run --out)")->required();
   sub->add_option("--out", o->out, "Output directory (default RUN_DIR)")->check(kNonEmptyPath);
+  sub->add_option("--against", o->against,
+                  "Compare with the transient finite-volume reference of the case: the output "
+                  "directory of `adrsph reference CASE --transient` (its outlet.csv must cover "
+                  "the run's sample times). Adds the reference's mean residence time, variance "
+                  "and the L1 distance of the normalised responses to rtd.md and rtd.json, and "
+                  "the column C_reference to rtd.csv (docs/rtd.md)")
+      ->check(kNonEmptyPath);
   sub->add_flag("!--no-plot", o->plot, "Do not draw the PNG");
   return {sub, [o] { return run_rtd(*o); }};
 }

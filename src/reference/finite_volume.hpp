@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <memory>
 #include <vector>
 
 #include "adrsph/reference.hpp"
@@ -31,6 +32,15 @@ UpwindSystem assemble_upwind_system(const Problem& p, const Grid& g,
 // Moving it to the right-hand side is the deferred correction.
 void advective_correction(const Problem& p, const Grid& g, const std::vector<double>& u_cell,
                           Limiter limiter, const Eigen::VectorXd& c, Eigen::VectorXd& corr);
+
+// One interface over the two Eigen solvers (linear_solver.cpp): factorise or precondition
+// once, solve many times. The matrix must outlive the solver (BiCGSTAB keeps a reference).
+class UpwindSolver {
+ public:
+  virtual ~UpwindSolver() = default;
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess) = 0;
+};
+std::unique_ptr<UpwindSolver> make_upwind_solver(LinearSolver kind, const SparseMatrix& A);
 
 // Limited slope from the upwind and downwind differences (TVD region, second order
 // where smooth: both return the true difference for dl == dr).

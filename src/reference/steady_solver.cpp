@@ -2,12 +2,9 @@
 // factorised or preconditioned once; the limited high-order advective flux is iterated by deferred
 // correction, A C^{n+1} = b - corr(C^n), until C stops changing. At convergence C solves
 // the full second-order TVD scheme; `residual` measures that directly.
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseLU>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -16,65 +13,10 @@
 namespace adrsph::reference {
 namespace {
 
-using detail::SparseMatrix;
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// One interface over the two Eigen solvers: factorise/precondition once, solve many times.
-class UpwindSolver {
- public:
-  virtual ~UpwindSolver() = default;
-  virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess) = 0;
-};
-
-class DirectSolver final : public UpwindSolver {
- public:
-  explicit DirectSolver(const SparseMatrix& A) {
-    lu_.analyzePattern(A);
-    lu_.factorize(A);
-    if (lu_.info() != Eigen::Success)
-      throw std::runtime_error("reference: SparseLU factorisation failed: " +
-                               lu_.lastErrorMessage());
-  }
-  Eigen::VectorXd solve(const Eigen::VectorXd& rhs, const Eigen::VectorXd&) override {
-    Eigen::VectorXd x = lu_.solve(rhs);
-    if (lu_.info() != Eigen::Success) throw std::runtime_error("reference: SparseLU solve failed");
-    return x;
-  }
-
- private:
-  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu_;
-};
-
-class IterativeSolver final : public UpwindSolver {
- public:
-  explicit IterativeSolver(const SparseMatrix& A) {
-    bicg_.preconditioner().setDroptol(1e-5);
-    bicg_.preconditioner().setFillfactor(10);
-    bicg_.setTolerance(1e-13);
-    bicg_.setMaxIterations(5000);
-    bicg_.compute(A);
-    if (bicg_.info() != Eigen::Success)
-      throw std::runtime_error("reference: IncompleteLUT preconditioner failed");
-  }
-  Eigen::VectorXd solve(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess) override {
-    Eigen::VectorXd x = bicg_.solveWithGuess(rhs, guess);
-    if (bicg_.info() != Eigen::Success)
-      throw std::runtime_error("reference: BiCGSTAB did not converge (error " +
-                               std::to_string(bicg_.error()) + ")");
-    return x;
-  }
-
- private:
-  Eigen::BiCGSTAB<SparseMatrix, Eigen::IncompleteLUT<double>> bicg_;
-};
-
-std::unique_ptr<UpwindSolver> make_solver(LinearSolver kind, const SparseMatrix& A) {
-  if (kind == LinearSolver::sparse_lu) return std::make_unique<DirectSolver>(A);
-  return std::make_unique<IterativeSolver>(A);
 }
 
 }  // namespace
@@ -98,7 +40,7 @@ Solution solve_steady(const Problem& p, int nx, int ny, const SolverOptions& opt
   rep.assembly_seconds = seconds_since(t0);
 
   t0 = Clock::now();
-  auto solver = make_solver(opt.solver, sys.A);
+  auto solver = detail::make_upwind_solver(opt.solver, sys.A);
   Eigen::VectorXd c = solver->solve(sys.b, Eigen::VectorXd::Zero(g.cells()));
   Eigen::VectorXd corr(g.cells());
   double scale = std::max(std::abs(p.c_in), c.cwiseAbs().maxCoeff());
