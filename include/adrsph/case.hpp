@@ -16,6 +16,23 @@ enum class Flow { wcsph, prescribed };
 // The inlet concentration in time (`species.feed.shape`): c_in throughout, a step from `base`
 // to c_in at t0, a pulse of c_in over [t0, t0 + width) on `base`, or a table of (t, C) points.
 enum class FeedShape { constant, step, pulse, table };
+// Rate laws of a `[[reaction]]` table, R the moles consumed per volume and time:
+// first_order R = k C, nth_order R = k C^n, michaelis_menten R = k C / (km + C).
+enum class RateLaw { first_order, nth_order, michaelis_menten };
+
+// One `[[reaction]]` table: a reaction that consumes the species (species/reaction_kinetics.hpp).
+struct Reaction {
+  RateLaw law = RateLaw::first_order;  // `law`
+  double k = 0.0;      // `k`: 1/s; (mol/m^3)^(1-n)/s for nth_order; mol/(m^3 s) (v_max) for MM
+  double order = 1.0;  // `order`, n of nth_order
+  double km = 0.0;     // `km` [mol/m^3], Michaelis constant
+  // `zones = [[x0, x1, y0, y1, factor], ...]`: k(x, y) = factor k in the first zone that holds
+  // (x, y) (x0 <= x < x1, y0 <= y < y1, mm), k outside every zone.
+  struct Zone {
+    double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0, factor = 1.0;
+  };
+  std::vector<Zone> zones;
+};
 
 struct Case {
   std::string name;                // `name`
@@ -68,6 +85,10 @@ struct Case {
       std::vector<std::array<double, 2>> table;  // `species.feed.table`, [[t, C], ...]
     } feed;
   } species;
+
+  // `[[reaction]]` tables: reactions besides species.k's first-order one (a case file with
+  // `[[reaction]]` tables and no species.k has species.k = 0). Rates add.
+  std::vector<Reaction> reactions;
 
   struct Modern {
     double delta = 0.1;      // `modern.delta`, density diffusion coefficient (eq. 8)
@@ -138,5 +159,6 @@ void validate_case(const Case& c);
 const char* to_string(Scheme s);
 const char* to_string(Flow f);
 const char* to_string(FeedShape f);
+const char* to_string(RateLaw r);
 
 }  // namespace adrsph

@@ -34,7 +34,8 @@ struct Problem {
 };
 
 // The reactor of a case: parabolic u(y) = u_max (1 - (y/R)^2), u_max = 2 u_bulk
-// (docs/benchmark.md, section 1).
+// (docs/benchmark.md, section 1). Throws std::invalid_argument for a case with [[reaction]]
+// tables (the reference has first-order kinetics only).
 Problem problem_from_case(const Case& c);
 std::function<double(double)> parabolic_profile(double u_max, double half_width);
 
