@@ -28,7 +28,8 @@ struct TransientProblem {
 };
 
 // The case's reactor (problem_from_case), its species.c_init, its [species.feed] as the inlet,
-// time.t_end and output.outlet_interval.
+// time.t_end and output.outlet_interval. Throws std::invalid_argument where problem_from_case
+// does (a case the reference cannot solve).
 TransientProblem transient_problem_from_case(const Case& c);
 
 struct TransientOptions {

@@ -58,7 +58,15 @@ int run_transient_reference(const TransientRequest& q, const Case& c) {
                  "output.outlet_interval=0.01\n";
     return kExitBadInput;
   }
-  const ref::TransientProblem p = ref::transient_problem_from_case(c);
+  // A case the reference cannot solve (problem_from_case throws std::invalid_argument) is
+  // bad input, like a bad grid or step.
+  ref::TransientProblem p;
+  try {
+    p = ref::transient_problem_from_case(c);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "adrsph reference: " << q.case_file.string() << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
   ref::TransientOptions opt;
   opt.solver = q.solver;
   opt.limiter = q.limiter;
