@@ -28,14 +28,17 @@ struct Problem {
   std::function<double(double y)> velocity;          // u(y) [mm/s]
   std::function<double(double y)> inlet;             // C(0, y); empty: c_in
   std::function<double(double x, double y)> source;  // S(x, y); empty: 0
+  // The [[reaction]] tables of the case, consuming R(C; x, y) besides k C (reaction_terms.cpp):
+  // first order, n-th order with n >= 1, Michaelis-Menten with km > 0, zones at cell centres.
+  std::vector<Reaction> reactions;
 
   double inlet_value(double y) const { return inlet ? inlet(y) : c_in; }
   double peclet() const { return u_bulk * length / D; }
 };
 
 // The reactor of a case: parabolic u(y) = u_max (1 - (y/R)^2), u_max = 2 u_bulk
-// (docs/benchmark.md, section 1). Throws std::invalid_argument for a case with [[reaction]]
-// tables (the reference has first-order kinetics only).
+// (docs/benchmark.md, section 1). Throws std::invalid_argument for a [[reaction]] whose rate
+// has an unbounded slope at C = 0 (n-th order with n < 1, Michaelis-Menten with km = 0).
 Problem problem_from_case(const Case& c);
 std::function<double(double)> parabolic_profile(double u_max, double half_width);
 

@@ -32,7 +32,7 @@ UpwindSystem assemble_upwind_system(const Problem& p, const Grid& g,
     for (int j = 0; j < g.ny; ++j) {
       const long P = g.index(i, j);
       const double f = u_cell[j] * dy;  // advective mass flux through the x-faces of row j
-      double diag = p.k * vol;
+      double diag = (p.k + reaction_slope(p, g.xc(i), g.yc(j))) * vol;
       double rhs = p.source ? p.source(g.xc(i), g.yc(j)) * vol : 0.0;
 
       // West face: upwind neighbour, or the Dirichlet inlet (value and half-cell gradient).

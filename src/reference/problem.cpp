@@ -15,12 +15,18 @@ std::function<double(double)> parabolic_profile(double u_max, double half_width)
 }
 
 Problem problem_from_case(const Case& c) {
-  if (!c.reactions.empty())
-    throw std::invalid_argument(
-        "the reference solves first-order kinetics (species.k) only; this case has " +
-        std::to_string(c.reactions.size()) +
-        " [[reaction]] table(s), which only the SPH engine takes so far");
+  // The reaction terms are iterated with a slope bound (reaction_terms.cpp): it must be finite.
+  for (std::size_t i = 0; i < c.reactions.size(); ++i) {
+    const Reaction& r = c.reactions[i];
+    if ((r.law == RateLaw::nth_order && r.order < 1.0) ||
+        (r.law == RateLaw::michaelis_menten && !(r.km > 0.0)))
+      throw std::invalid_argument(
+          "reaction[" + std::to_string(i) +
+          "]: the reference takes n-th order kinetics with n >= 1 and Michaelis-Menten with "
+          "km > 0 (a rate with an unbounded slope at C = 0 is for the SPH engine only)");
+  }
   Problem p;
+  p.reactions = c.reactions;
   p.length = c.geometry.length;
   p.half_width = c.geometry.half_width;
   p.D = c.species.D;

@@ -50,6 +50,11 @@ void write_reference_json(const std::filesystem::path& file, const std::string& 
   field("half_width", number(p.half_width));
   field("D", number(p.D));
   field("k", number(p.k));
+  // The [[reaction]] tables: their laws (the case file has the rest).
+  std::string laws = "[";
+  for (const Reaction& rx : p.reactions)
+    laws.append(laws.size() > 1 ? ", " : "").append(quoted(to_string(rx.law)));
+  field("reactions", laws + "]");
   field("c_in", number(p.c_in));
   field("u_bulk", number(p.u_bulk));
   field("Pe", number(p.peclet()));

@@ -45,13 +45,15 @@ Solution solve_steady(const Problem& p, int nx, int ny, const SolverOptions& opt
   Eigen::VectorXd corr(g.cells());
   double scale = std::max(std::abs(p.c_in), c.cwiseAbs().maxCoeff());
   if (scale == 0.0) scale = 1.0;
-  rep.converged = opt.limiter == Limiter::upwind;
+  // Nothing to iterate for upwind advection and linear kinetics.
+  rep.converged = opt.limiter == Limiter::upwind && p.reactions.empty();
   // Under-relaxation, halved whenever the change has not improved for 10 iterations: the
   // limiter's switches (minmod's kinks) can otherwise leave a limit cycle near 1e-10.
   double relax = 1.0, best = std::numeric_limits<double>::infinity();
   int since_best = 0;
   for (int it = 1; !rep.converged && it <= opt.max_corrections; ++it) {
     detail::advective_correction(p, g, u_cell, opt.limiter, c, corr);
+    detail::add_reaction_correction(p, g, c, corr);
     const Eigen::VectorXd next = solver->solve(sys.b - corr, c);
     const double change = (next - c).cwiseAbs().maxCoeff() / scale;
     c += relax * (next - c);
@@ -70,6 +72,7 @@ Solution solve_steady(const Problem& p, int nx, int ny, const SolverOptions& opt
   rep.solve_seconds = seconds_since(t0);
 
   detail::advective_correction(p, g, u_cell, opt.limiter, c, corr);
+  detail::add_reaction_correction(p, g, c, corr);
   const double bnorm = sys.b.norm();
   rep.residual = (sys.A * c + corr - sys.b).norm() / (bnorm > 0.0 ? bnorm : 1.0);
 

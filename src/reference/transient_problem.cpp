@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "adrsph/reference_transient.hpp"
 #include "species/feed_integral.hpp"
@@ -11,6 +13,10 @@
 namespace adrsph::reference {
 
 TransientProblem transient_problem_from_case(const Case& c) {
+  if (!c.reactions.empty())
+    throw std::invalid_argument(
+        "the transient reference has species.k's first-order kinetics only; this case has " +
+        std::to_string(c.reactions.size()) + " [[reaction]] table(s)");
   TransientProblem p;
   p.space = problem_from_case(c);
   p.c_init = c.species.c_init;

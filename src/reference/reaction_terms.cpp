@@ -1,0 +1,71 @@
+// The [[reaction]] terms of the reference (finite_volume.hpp): the rate laws of
+// docs/kinetics.md evaluated at cell centres, with a bound of their slope over [0, c_in] (the
+// steady solution stays in it: the inlet is the largest value and reactions only consume).
+// The iteration (A + a) C_new = b - vol (R(C) - a C) contracts because 0 <= dR/dC <= a.
+#include <algorithm>
+#include <cmath>
+
+#include "reference/finite_volume.hpp"
+
+namespace adrsph::reference::detail {
+namespace {
+
+// k(x, y) / k: the first zone holding the point (x0 <= x < x1, y0 <= y < y1), else 1.
+double zone_factor_at(const Reaction& r, double x, double y) {
+  for (const Reaction::Zone& z : r.zones)
+    if (x >= z.x0 && x < z.x1 && y >= z.y0 && y < z.y1) return z.factor;
+  return 1.0;
+}
+
+double rate(const Reaction& r, double k, double c) {
+  c = std::max(c, 0.0);
+  switch (r.law) {
+    case RateLaw::first_order:
+      return k * c;
+    case RateLaw::nth_order:
+      return k * std::pow(c, r.order);
+    case RateLaw::michaelis_menten:
+      return k * c / (r.km + c);
+  }
+  return 0.0;
+}
+
+// max of dR/dC over [0, c_max]: k; n k c_max^(n-1) (n >= 1); k / km at C = 0.
+double slope_bound(const Reaction& r, double k, double c_max) {
+  switch (r.law) {
+    case RateLaw::first_order:
+      return k;
+    case RateLaw::nth_order:
+      return r.order * k * std::pow(std::max(c_max, 0.0), r.order - 1.0);
+    case RateLaw::michaelis_menten:
+      return k / r.km;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+double reaction_slope(const Problem& p, double x, double y) {
+  double a = 0.0;
+  for (const Reaction& r : p.reactions) a += slope_bound(r, r.k * zone_factor_at(r, x, y), p.c_in);
+  return a;
+}
+
+void add_reaction_correction(const Problem& p, const Grid& g, const Eigen::VectorXd& c,
+                             Eigen::VectorXd& corr) {
+  if (p.reactions.empty()) return;
+  const double vol = g.dx() * g.dy();
+  for (int i = 0; i < g.nx; ++i)
+    for (int j = 0; j < g.ny; ++j) {
+      const long P = g.index(i, j);
+      const double x = g.xc(i), y = g.yc(j);
+      double excess = 0.0;  // R(C) - a C
+      for (const Reaction& r : p.reactions) {
+        const double k = r.k * zone_factor_at(r, x, y);
+        excess += rate(r, k, c[P]) - slope_bound(r, k, p.c_in) * c[P];
+      }
+      corr[P] += vol * excess;
+    }
+}
+
+}  // namespace adrsph::reference::detail
