@@ -6,15 +6,11 @@
 #include <string>
 
 namespace adrsph::analysis {
-namespace {
-
-std::string num(double v) {
+std::string rtd_number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
 }
-
-}  // namespace
 
 // The analysis needs a feed of finite amount whose moments feed_moments() gives exactly.
 void check_rtd_feed(const Case& c) {
@@ -34,15 +30,15 @@ void check_rtd_feed(const Case& c) {
       if (std::abs(end[1] - f.base) > 1e-9 * scale)
         throw RtdInputError(
             RtdInputError::Source::feed,
-            "species.feed.table must start and end at species.feed.base = " + num(f.base) +
-                " (a finite tracer input), got C = " + num(end[1]) + " at t = " + num(end[0]) +
-                "; add points at the base before and after the input");
+            "species.feed.table must start and end at species.feed.base = " + rtd_number(f.base) +
+                " (a finite tracer input), got C = " + rtd_number(end[1]) + " at t = " +
+                rtd_number(end[0]) + "; add points at the base before and after the input");
   }
   const FeedMoments m = feed_moments(c.species);
   if (!(std::abs(m.amount) > 0.0) || !std::isfinite(m.amount))
     throw RtdInputError(RtdInputError::Source::feed,
                         "the feed carries no tracer (its excess over species.feed.base = " +
-                            num(f.base) + " has amount " + num(m.amount) +
+                            rtd_number(f.base) + " has amount " + rtd_number(m.amount) +
                             "); set species.c_in (or the table) apart from the base");
 }
 
@@ -96,8 +92,8 @@ Rtd residence_time_distribution(const std::vector<OutletRow>& rows, const Case& 
   const double sign = r.feed.amount > 0.0 ? 1.0 : -1.0;
   if (!(sign * r.outlet.area > 1e-12 * std::abs(r.feed.amount)))
     throw RtdInputError(RtdInputError::Source::outlet,
-                        "the outlet's excess over species.feed.base = " + num(base) +
-                            " has zero area (area " + num(r.outlet.area) +
+                        "the outlet's excess over species.feed.base = " + rtd_number(base) +
+                            " has zero area (area " + rtd_number(r.outlet.area) +
                             "): the tracer has not reached the outlet; run longer (time.t_end)");
 
   for (double v : g) r.e_out.push_back(v / r.outlet.area);

@@ -27,6 +27,9 @@ CurveMoments curve_moments(const std::vector<double>& t, const std::vector<doubl
 double l1_distance(const std::vector<double>& t, const std::vector<double>& a,
                    const std::vector<double>& b);
 
+// A number in the messages of the analysis: 6 significant digits (%.6g).
+std::string rtd_number(double v);
+
 // Input the analysis cannot use. `source` says where the fix belongs: the feed of the case
 // (a constant or step feed, a table that does not return to the base) or the outlet series
 // (too few samples, no excess).

@@ -7,12 +7,6 @@
 namespace adrsph::analysis {
 namespace {
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 // Linear interpolation of (t, v) at `at`, t increasing and bracketing `at`.
 double interpolate(const std::vector<double>& t, const std::vector<double>& v, double at) {
   const auto hi = std::upper_bound(t.begin(), t.end(), at);
@@ -27,7 +21,8 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& v, d
 std::vector<std::string> differences(const Case& run, const Case& ref) {
   std::vector<std::string> out;
   auto key = [&out](const char* name, double a, double b) {
-    if (a != b) out.push_back(std::string(name) + ": run " + num(a) + ", reference " + num(b));
+    if (a != b)
+      out.push_back(std::string(name) + ": run " + rtd_number(a) + ", reference " + rtd_number(b));
   };
   key("geometry.length", run.geometry.length, ref.geometry.length);
   key("geometry.half_width", run.geometry.half_width, ref.geometry.half_width);
@@ -62,11 +57,12 @@ RtdAgainst against_reference(const Rtd& run, const Case& run_case,
   // Covering: the run's first and last samples lie within the reference's (to rounding).
   const double slack = 1e-9 * std::max({1.0, std::abs(run.t.front()), std::abs(run.t.back())});
   if (a.t_first > run.t.front() + slack || a.t_last < run.t.back() - slack)
-    throw RtdInputError(Source::outlet,
-                        "the reference's samples cover t = " + num(a.t_first) + " to " +
-                            num(a.t_last) + " s, not the run's t = " + num(run.t.front()) + " to " +
-                            num(run.t.back()) +
-                            " s; solve the reference to time.t_end >= " + num(run.t.back()) + " s");
+    throw RtdInputError(
+        Source::outlet,
+        "the reference's samples cover t = " + rtd_number(a.t_first) + " to " +
+            rtd_number(a.t_last) + " s, not the run's t = " + rtd_number(run.t.front()) + " to " +
+            rtd_number(run.t.back()) +
+            " s; solve the reference to time.t_end >= " + rtd_number(run.t.back()) + " s");
 
   a.feed = feed_moments(reference_case.species);
   const double base = reference_case.species.feed.base;
@@ -79,8 +75,8 @@ RtdAgainst against_reference(const Rtd& run, const Case& run_case,
   const double sign = a.feed.amount > 0.0 ? 1.0 : -1.0;
   if (!(sign * a.outlet.area > 1e-12 * std::abs(a.feed.amount)))
     throw RtdInputError(Source::outlet,
-                        "the reference's excess over species.feed.base = " + num(base) +
-                            " has zero area (area " + num(a.outlet.area) + ")");
+                        "the reference's excess over species.feed.base = " + rtd_number(base) +
+                            " has zero area (area " + rtd_number(a.outlet.area) + ")");
   a.mean_residence_time = a.outlet.mean - a.feed.mean;
   a.variance = a.outlet.variance - a.feed.variance;
   a.recovery = a.outlet.area / a.feed.amount;
