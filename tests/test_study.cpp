@@ -113,7 +113,7 @@ TEST(StudyPlan, PaperStudyExpandsInFileOrder) {
   EXPECT_EQ(study.reference_nx, 1600);
   EXPECT_EQ(study.threads, 2);
   const auto runs = analysis::expand_study(study);
-  ASSERT_EQ(runs.size(), 9u + 18u + 6u + 3u);
+  ASSERT_EQ(runs.size(), 9u + 18u + 6u + 3u + 2u);
   // Groups in file order; within a group the last axis (dx) fastest.
   EXPECT_EQ(runs[0].name, "prescribed-pe10-dx0.5");
   EXPECT_EQ(runs[1].name, "prescribed-pe10-dx0.25");
@@ -124,8 +124,10 @@ TEST(StudyPlan, PaperStudyExpandsInFileOrder) {
   EXPECT_EQ(runs[18].group, "paper-modern");
   EXPECT_EQ(runs[26].name, "paper-modern-pe100000-dx0.125");
   EXPECT_EQ(runs[27].name, "warm-conventional-pe10-dx0.5");
-  EXPECT_EQ(runs.back().name, "ale-pe100000");
-  EXPECT_EQ(runs.back().group, "ale");
+  EXPECT_EQ(runs[35].name, "ale-pe100000");
+  EXPECT_EQ(runs[35].group, "ale");
+  EXPECT_EQ(runs.back().name, "c0-pe100000");
+  EXPECT_EQ(runs.back().group, "c0");
 
   // Pe -> species.D = u_bulk L / Pe = 1e4 / Pe.
   const auto& pe10 = find_run(runs, "paper-modern-pe10-dx0.25");
@@ -146,6 +148,10 @@ TEST(StudyPlan, PaperStudyExpandsInFileOrder) {
               ElementsAre("time.cfl=0.75", "scheme=modern", "species.D=10", "particles.dx=0.25",
                           "species.ale=true"));
   EXPECT_EQ(find_run(runs, "warm-modern-pe1000-dx0.5").sets[0], "time.warm_start=true");
+  // The speed of sound is the flow's, not the reference's: a group may change it.
+  EXPECT_THAT(find_run(runs, "c0-pe1000").sets,
+              ElementsAre("time.warm_start=false", "time.cfl=0.75", "scheme=modern",
+                          "species.D=10", "particles.dx=0.25", "fluid.c0_factor=20"));
 }
 
 TEST(StudyPlan, CaseKeyAxesNameRunsByTheirLastComponent) {

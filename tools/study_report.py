@@ -10,12 +10,16 @@ the last frame of fields.h5 for the contour plots), the references' probes.csv, 
 and reference.h5, and writes into REPORT_DIR (Markdown, CSV and PNG only):
 
   README.md                 the report: the paper's table 3 at dx = 0.125 with the targets,
-                            the same at 0.5 and 0.25, observed orders of convergence, run time
+                            the same at 0.5 and 0.25, observed orders of convergence, what
+                            the error is made of (species discretisation, flow), run time
                             against error with a "best buy", warm against cold start, the
                             ALE-consistent form against the paper's, and the plots below
   summary.csv               one row per run (done, failed or not run)
   station_errors.csv        station values and relative errors of every done run
   warm_vs_cold.csv, ale_vs_paper.csv, convergence_order.csv
+  error_decomposition.csv   signed error of each WCSPH run, that of the prescribed-flow run at
+                            the same Pe and dx, their difference (the flow's part) and the
+                            weak-compressibility estimate (docs/compressibility.md)
   errors_pe<Pe>.png         relative error along the probe lines (the paper's figures 3-5)
   contours_pe<Pe>.png       steady contours, finest modern run against the reference (figure 2)
   cost_vs_error.png         outlet and worst station error against wall time, all runs
@@ -218,8 +222,13 @@ class Run:
         else:
             self.warm = truthy(self.sets.get("time.warm_start", g == "warm"))
             self.ale = truthy(self.sets.get("species.ale", g == "ale"))
+        # Case keys the run changed (study --set, and run.json's record of them).
+        self.overrides = dict(self.sets)
+        self.overrides.update(parse_sets(info.get("overrides")))
         if self.flow == "prescribed":
             self.kind = "prescribed"
+        elif "fluid.c0_factor" in self.overrides:  # another speed of sound than the paper's
+            self.kind = "c0"
         elif self.ale:
             self.kind = "ale"
         elif self.warm:
@@ -296,6 +305,8 @@ class Run:
             parts.append("warm")
         if self.kind == "ale":
             parts.append("ALE")
+        if self.kind == "c0":
+            parts.append(f"c0 = {self.overrides['fluid.c0_factor']} u_max")
         return " ".join(parts) + f", dx {self.dx:g}" if self.dx else " ".join(parts)
 
 
@@ -593,6 +604,115 @@ def section_ale(runs):
     return md_table(header, rows), csv_rows
 
 
+def flatten_toml(d, prefix=""):
+    out = {}
+    for k, v in d.items():
+        if isinstance(v, dict):
+            out.update(flatten_toml(v, f"{prefix}{k}."))
+        else:
+            out[f"{prefix}{k}"] = v
+    return out
+
+
+def base_case_keys(study):
+    """The study's base case as {dotted key: value}, or {} when it cannot be read.
+
+    study.json names the study file relative to the repository (or absolutely); the study
+    file names its base case relative to itself."""
+    try:
+        import tomllib
+    except ImportError:
+        return {}
+    sf = str(study.get("study_file") or "")
+    if not sf:
+        return {}
+    path = sf if os.path.isabs(sf) else os.path.join(TOOLS_DIR, "..", sf)
+    try:
+        with open(path, "rb") as f:
+            case = tomllib.load(f).get("case")
+        with open(os.path.join(os.path.dirname(path), str(case)), "rb") as f:
+            return flatten_toml(tomllib.load(f))
+    except (OSError, ValueError, TypeError):
+        return {}
+
+
+def compressibility_estimate(run, base):
+    """Relative change of the section averages at the stations that the weak compressibility
+    of the flow makes (docs/compressibility.md): the density falls by
+    g = 2 nu u_max L / (R^2 c0^2) along the channel, which dilutes C by g x / L and shortens
+    the time to react by g x^2 / (2 L u) (u the section mean, 2/3 u_max):
+
+        dC / C = -g x / L + (k x / u) g x / (2 L).
+
+    {x: value}, or {} when a parameter is missing."""
+    keys = dict(base)
+    for k, v in run.overrides.items():
+        keys[k] = num(v)
+    try:
+        nu, u_bulk = float(keys["fluid.nu"]), float(keys["fluid.u_bulk"])
+        c0f, length = float(keys["fluid.c0_factor"]), float(keys["geometry.length"])
+        half = float(keys["geometry.half_width"])
+    except (KeyError, TypeError, ValueError):
+        return {}
+    k = num(run.info.get("k")) if run.info else math.nan
+    if not math.isfinite(k):
+        k = num(keys.get("species.k"))
+    u_max = 2.0 * u_bulk  # the case files' relation (cases/README.md)
+    g = 2.0 * nu * u_max * length / (half ** 2 * (c0f * u_max) ** 2)
+    u_mean = 2.0 * u_max / 3.0
+    if not all(math.isfinite(v) for v in (g, k)):
+        return {}
+    return {x: -g * x / length + (k * x / u_mean) * g * x / (2.0 * length) for x in STATIONS}
+
+
+def signed_err(c, c_ref):
+    if not (math.isfinite(c) and math.isfinite(c_ref)) or c_ref <= 0:
+        return math.nan
+    return (c - c_ref) / c_ref
+
+
+def spct(v):
+    return "n/a" if not math.isfinite(v) else f"{100 * v:+.3f}%"
+
+
+def section_decomposition(runs, refs, base):
+    """Each WCSPH run's signed error split into the species discretisation (the prescribed-flow
+    run at the same Pe and dx: the exact flow, the same particles and operators) and the rest,
+    the flow model's, with the weak-compressibility estimate beside it."""
+    rows, csv_rows, gaps = [], [], {}
+    for r in runs:
+        if not r.done or r.kind not in ("paper", "c0") or r.pe not in refs:
+            continue
+        pres = pick(runs, "prescribed", None, r.pe, r.dx)
+        ref = refs[r.pe]
+        est = compressibility_estimate(r, base)
+        e_run = {x: signed_err(r.station_c(x), ref.station(x)) for x in STATIONS}
+        have_p = pres is not None and pres.done
+        e_pre = {x: signed_err(pres.station_c(x), ref.station(x)) if have_p else math.nan
+                 for x in STATIONS}
+        diff = {x: (r.station_c(x) - pres.station_c(x)) / ref.station(x) if have_p
+                else math.nan for x in STATIONS}
+        for x in STATIONS:
+            if math.isfinite(diff[x]) and x in est:
+                gaps.setdefault(r.scheme, []).append(abs(diff[x] - est[x]))
+            csv_rows.append([r.name, r.scheme, r.kind, r.pe, r.dx, x, e_run[x],
+                             pres.name if have_p else "", e_pre[x], diff[x],
+                             est.get(x, math.nan)])
+        rows.append([fmt_pe(r.pe), f"{r.dx:g}", r.label().rsplit(",", 1)[0], r.name,
+                     " / ".join(spct(e_run[x]) for x in STATIONS),
+                     " / ".join(spct(e_pre[x]) for x in STATIONS) if have_p else
+                     ("prescribed run " + (pres.state if pres else "not in study")),
+                     " / ".join(spct(diff[x]) for x in STATIONS) if have_p else "-",
+                     " / ".join(spct(est[x]) for x in STATIONS) if est else "-"])
+    if not rows:
+        return "No done WCSPH run with a reference yet.\n", [], gaps
+    rows.sort(key=lambda row: (float(row[0]), row[2], -float(row[1])))
+    header = ["Pe", "dx", "scheme", "run", "signed error x = 25 / 50 / 100",
+              "prescribed flow, same dx", "run - prescribed (the flow's part)",
+              "weak-compressibility estimate"]
+    return md_table(header, rows), csv_rows, gaps
+
+
 # ----------------------------------------------------------------------------- plots
 
 SCHEME_COLOR = {"modern": "tab:blue", "conventional": "tab:red"}
@@ -635,7 +755,8 @@ def plot_probe_errors(runs, pe, out):
 
 KIND_COLOR = {("modern", "paper"): "tab:blue", ("modern", "warm"): "tab:cyan",
               ("conventional", "paper"): "tab:red", ("conventional", "warm"): "tab:orange",
-              ("modern", "ale"): "tab:purple", ("modern", "prescribed"): "tab:green"}
+              ("modern", "ale"): "tab:purple", ("modern", "prescribed"): "tab:green",
+              ("modern", "c0"): "tab:brown", ("conventional", "c0"): "tab:pink"}
 DX_MARKER = {COARSE: "o", MID: "s", FINE: "^"}
 
 
@@ -664,7 +785,8 @@ def plot_cost(runs, out):
     for thr in BEST_BUY_THRESHOLDS:
         ax.axhline(thr, color="0.6", lw=0.6, ls=":")
     kinds = sorted({(r.scheme if r.kind != "prescribed" else "prescribed", r.kind) for r in pts})
-    names = {"paper": "cold", "warm": "warm", "ale": "ALE", "prescribed": "flow"}
+    names = {"paper": "cold", "warm": "warm", "ale": "ALE", "prescribed": "flow",
+             "c0": "larger c0"}
     h1 = [Line2D([], [], ls="", marker="o", color=("tab:green" if s == "prescribed" else
                                                    KIND_COLOR.get((s, k), "tab:gray")),
                  label=f"{s} {names.get(k, k)}") for s, k in kinds]
@@ -795,7 +917,8 @@ def write_report(runs_dir, report_dir, warm_tol=0.0005, contours=True):
           "average at the stations x = 25, 50, 100 mm and along the probe lines y = 0, +2.5, "
           "-2.5 mm. Groups: `paper` (cold start, the paper's matrix), `prescribed` (species in "
           "the prescribed flow), `warm` (WCSPH started from the prescribed-flow steady state), "
-          "`ale` (modern scheme with the ALE-consistent species form).\n",
+          "`ale` (modern scheme with the ALE-consistent species form), `c0` (modern scheme at "
+          "twice the speed of sound: the weak-compressibility error).\n",
           f"Reproduce (resumes what is not done, then rewrites this report):\n\n"
           f"```bash\nbuild/adrsph study {study_file} --resume\n```\n",
           f"Runs: {len(runs)} in the study, {n[DONE]} done, {n[FAILED]} failed, "
@@ -849,6 +972,32 @@ def write_report(runs_dir, report_dir, warm_tol=0.0005, contours=True):
         md.append("\nThe error falls with resolution everywhere it can be measured.\n")
     write_csv(os.path.join(report_dir, "convergence_order.csv"),
               ["Pe", "scheme", "x_mm", "step", "e_from", "e_to", "p"], order_csv)
+    md.append("\n### What the error is made of: the species discretisation and the flow\n")
+    md.append("Signed errors (C - C_ref) / C_ref of the section averages. The prescribed-flow "
+              "run at the same Pe and dx carries the species on the same particles with the "
+              "same operators in the exact flow: its error is the species discretisation's. "
+              "What the WCSPH run adds to it, (C_run - C_prescribed) / C_ref, is the flow "
+              "model's part. Beside it, the estimate of the weak-compressibility error "
+              "(docs/compressibility.md): the density falls along the channel by "
+              "g = 2 nu u_max L / (R^2 c0^2) (0.6% at c0 = 10 u_max), which dilutes C by "
+              "g x / L and shortens the time to react; the reference is incompressible, so "
+              "this error does not fall with dx, only as 1/c0^2 (rows `c0-*`: twice the speed "
+              "of sound).\n")
+    dec_md, dec_csv, gaps = section_decomposition(runs, refs, base_case_keys(study))
+    md.append(dec_md)
+    if gaps:
+        md.append("\nHow far the flow's part is from the compressibility estimate, over the "
+                  "station values with a prescribed-flow run beside them: " + "; ".join(
+                      f"{scheme}: median {100 * float(np.median(g)):.3f} points, largest "
+                      f"{100 * max(g):.3f} ({len(g)} values)"
+                      for scheme, g in sorted(gaps.items())) +
+                  ". Where it is close, the part of the WCSPH error that does not fall with dx "
+                  "is this model error, while the species discretisation (the prescribed "
+                  "column) keeps converging.\n")
+    write_csv(os.path.join(report_dir, "error_decomposition.csv"),
+              ["run", "scheme", "kind", "Pe", "dx", "x_mm", "signed_error", "prescribed_run",
+               "prescribed_signed_error", "run_minus_prescribed", "compressibility_estimate"],
+              dec_csv)
     st_rows = []
     for r in runs:
         if r.state != NOT_RUN:
@@ -1022,6 +1171,8 @@ def make_synthetic(root, with_h5=True):
          "ok", 0.01205, 25.0),
         ("pe1000_modern_dx0.25_ale", "ale", "modern", "wcsph", 1000.0, 0.25, False, True, "ok",
          0.003, 320.0),
+        ("pe1000_modern_dx0.5_c0", "c0", "modern", "wcsph", 1000.0, 0.5, False, False, "ok",
+         0.011, 80.0),  # fluid.c0_factor = 20
     ]
     runs = []
     expected = {}
@@ -1029,7 +1180,8 @@ def make_synthetic(root, with_h5=True):
         entry = {"name": name, "group": group, "dir": name, "reference": f"reference/pe{pe:g}",
                  "sets": [f"scheme={scheme}", f"flow={flow}", f"particles.dx={dx:g}",
                           f"time.warm_start={str(warm).lower()}",
-                          f"species.ale={str(ale).lower()}"],
+                          f"species.ale={str(ale).lower()}"] +
+                         (["fluid.c0_factor=20"] if group == "c0" else []),
                  "status": "pending" if status is None else ("done" if status == "ok"
                                                              else "failed")}
         runs.append(entry)
@@ -1141,6 +1293,27 @@ def self_test(keep=None):
         check("**Targets missed:**" in text and "dx0.125): MISSED at x = 25" in text,
               "miss not stated")
         check(text.split("## 2.")[0].count("**NO**") == 1, "a target miss where none is")
+        # The decomposition: modern Pe 1000 dx 0.5 is +1.2% at x = 100, the prescribed run at
+        # the same dx +0.15%, so the flow's part is +1.05%. The compressibility estimate from
+        # cases/lfr.toml (nu 15, u_max 200, L 100, R 5, c0 10 u_max: g = 0.006) with the run's
+        # k = 1: -0.006 + (1 * 100 / 133.33) * 0.006 / 2 = -0.375%; at c0 = 20 u_max a quarter.
+        with open(os.path.join(report_dir, "error_decomposition.csv"), newline="") as f:
+            dec = {(r["run"], float(r["x_mm"])): r for r in csv.DictReader(f)}
+        row = dec.get(("pe1000_modern_dx0.5", 100.0))
+        check(row is not None and abs(float(row["run_minus_prescribed"]) - 0.0105) < 1e-6 and
+              abs(float(row["signed_error"]) - 0.012) < 1e-6,
+              f"decomposition of pe1000_modern_dx0.5: {row}")
+        check(row is not None and abs(float(row["compressibility_estimate"]) + 0.00375) < 1e-9,
+              f"compressibility estimate {row and row['compressibility_estimate']}")
+        row = dec.get(("pe1000_modern_dx0.5_c0", 100.0))
+        check(row is not None and row["kind"] == "c0" and
+              abs(float(row["compressibility_estimate"]) + 0.00375 / 4) < 1e-9,
+              f"c0 row of the decomposition: {row}")
+        check(("pe1000_modern_dx0.25_ale", 100.0) not in dec, "an ALE run in the decomposition")
+        coarse3 = [l for l in text.split("### coarse")[1].splitlines()
+                   if l.startswith("| 1000 | modern |")]
+        check(coarse3 and "pe1000_modern_dx0.5 " in coarse3[0] + " ",
+              "the c0 run taken for the paper's coarse cell")
         if failures:
             print("study_report self-test FAILED:\n  " + "\n  ".join(failures))
             return 1
