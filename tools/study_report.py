@@ -314,10 +314,14 @@ class Run:
         return " ".join(parts) + f", dx {self.dx:g}" if self.dx else " ".join(parts)
 
 
-def rel_err(c, c_ref):
+def signed_err(c, c_ref):
     if not (math.isfinite(c) and math.isfinite(c_ref)) or c_ref <= 0:
         return math.nan
-    return abs(c - c_ref) / c_ref
+    return (c - c_ref) / c_ref
+
+
+def rel_err(c, c_ref):
+    return abs(signed_err(c, c_ref))
 
 
 def load_study(runs_dir):
@@ -668,12 +672,6 @@ def compressibility_estimate(run, base):
     if not all(math.isfinite(v) for v in (g, k)):
         return {}
     return {x: -g * x / length + (k * x / u_mean) * g * x / (2.0 * length) for x in STATIONS}
-
-
-def signed_err(c, c_ref):
-    if not (math.isfinite(c) and math.isfinite(c_ref)) or c_ref <= 0:
-        return math.nan
-    return (c - c_ref) / c_ref
 
 
 def spct(v):
