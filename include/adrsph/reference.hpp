@@ -31,6 +31,10 @@ struct Problem {
   // The [[reaction]] tables of the case, consuming R(C; x, y) besides k C (reaction_terms.cpp):
   // first order, n-th order with n >= 1, Michaelis-Menten with km > 0, zones at cell centres.
   std::vector<Reaction> reactions;
+  // The largest C the field can take, over which the reaction terms' slope is bounded
+  // (reaction_terms.cpp); 0: c_in, the steady maximum (the inlet, as reactions only consume).
+  // The transient mode sets it to the larger of the initial value and the feed's maximum.
+  double c_max = 0.0;
 
   double inlet_value(double y) const { return inlet ? inlet(y) : c_in; }
   double peclet() const { return u_bulk * length / D; }

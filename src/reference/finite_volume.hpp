@@ -34,13 +34,15 @@ void advective_correction(const Problem& p, const Grid& g, const std::vector<dou
                           Limiter limiter, const Eigen::VectorXd& c, Eigen::VectorXd& corr);
 
 // The [[reaction]] terms (reaction_terms.cpp), linearised about a bound of their slope:
-// R(C) = a C + (R(C) - a C), a >= dR/dC over [0, c_in] in each cell, the first part on the
+// R(C) = a C + (R(C) - a C), a >= dR/dC over [0, c_max] in each cell, the first part on the
 // matrix diagonal (reaction_slope, per unit volume), the second moved to the right-hand side
 // and iterated with the advective correction (reaction_correction adds vol (R - a C)).
 // A first-order reaction is exactly linear: its correction is zero.
 double reaction_slope(const Problem& p, double x, double y);
 void add_reaction_correction(const Problem& p, const Grid& g, const Eigen::VectorXd& c,
                              Eigen::VectorXd& corr);
+// sum over the cells of vol R(C): what the [[reaction]] tables consume per unit time and depth.
+double reaction_total(const Problem& p, const Grid& g, const Eigen::VectorXd& c);
 
 // One interface over the two Eigen solvers (linear_solver.cpp): factorise or precondition
 // once, solve many times. The matrix must outlive the solver (BiCGSTAB keeps a reference).

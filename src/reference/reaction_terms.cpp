@@ -1,6 +1,7 @@
 // The [[reaction]] terms of the reference (finite_volume.hpp): the rate laws of
-// docs/kinetics.md evaluated at cell centres, with a bound of their slope over [0, c_in] (the
-// steady solution stays in it: the inlet is the largest value and reactions only consume).
+// docs/kinetics.md evaluated at cell centres, with a bound of their slope over [0, c_max]
+// (Problem::c_max, or c_in: the steady solution stays in [0, c_in], the inlet being the
+// largest value and reactions only consuming; a transient one in [0, max(c_init, feed)]).
 // The iteration (A + a) C_new = b - vol (R(C) - a C) contracts because 0 <= dR/dC <= a.
 #include <algorithm>
 #include <cmath>
@@ -43,18 +44,31 @@ double slope_bound(const Reaction& r, double k, double c_max) {
   return 0.0;
 }
 
+double c_bound(const Problem& p) { return p.c_max > 0.0 ? p.c_max : p.c_in; }
+
 }  // namespace
 
 double reaction_slope(const Problem& p, double x, double y) {
   double a = 0.0;
-  for (const Reaction& r : p.reactions) a += slope_bound(r, r.k * zone_factor_at(r, x, y), p.c_in);
+  for (const Reaction& r : p.reactions)
+    a += slope_bound(r, r.k * zone_factor_at(r, x, y), c_bound(p));
   return a;
+}
+
+double reaction_total(const Problem& p, const Grid& g, const Eigen::VectorXd& c) {
+  if (p.reactions.empty()) return 0.0;
+  double total = 0.0;
+  for (int i = 0; i < g.nx; ++i)
+    for (int j = 0; j < g.ny; ++j)
+      for (const Reaction& r : p.reactions)
+        total += rate(r, r.k * zone_factor_at(r, g.xc(i), g.yc(j)), c[g.index(i, j)]);
+  return total * g.dx() * g.dy();
 }
 
 void add_reaction_correction(const Problem& p, const Grid& g, const Eigen::VectorXd& c,
                              Eigen::VectorXd& corr) {
   if (p.reactions.empty()) return;
-  const double vol = g.dx() * g.dy();
+  const double vol = g.dx() * g.dy(), c_max = c_bound(p);
   for (int i = 0; i < g.nx; ++i)
     for (int j = 0; j < g.ny; ++j) {
       const long P = g.index(i, j);
@@ -62,7 +76,7 @@ void add_reaction_correction(const Problem& p, const Grid& g, const Eigen::Vecto
       double excess = 0.0;  // R(C) - a C
       for (const Reaction& r : p.reactions) {
         const double k = r.k * zone_factor_at(r, x, y);
-        excess += rate(r, k, c[P]) - slope_bound(r, k, p.c_in) * c[P];
+        excess += rate(r, k, c[P]) - slope_bound(r, k, c_max) * c[P];
       }
       corr[P] += vol * excess;
     }

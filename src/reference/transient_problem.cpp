@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <string>
 
 #include "adrsph/reference_transient.hpp"
 #include "species/feed_integral.hpp"
@@ -13,13 +12,11 @@
 namespace adrsph::reference {
 
 TransientProblem transient_problem_from_case(const Case& c) {
-  if (!c.reactions.empty())
-    throw std::invalid_argument(
-        "the transient reference has species.k's first-order kinetics only; this case has " +
-        std::to_string(c.reactions.size()) + " [[reaction]] table(s)");
   TransientProblem p;
   p.space = problem_from_case(c);
   p.c_init = c.species.c_init;
+  // The field stays within [0, max(c_init, feed)]: the reaction terms' slope bound.
+  p.space.c_max = std::max(c.species.c_init, feed_max(c.species));
   const Case::Species species = c.species;
   p.inlet_integral = [species](double a, double b) { return feed_integral(species, a, b); };
   // Just before t = 0 (every feature of a feed starts at t >= 0).

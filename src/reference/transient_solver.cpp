@@ -1,8 +1,9 @@
 // Transient solve (docs/reference.md, "Transient mode"). Per unit depth every cell balance of
 // the steady scheme (finite_volume.hpp) gains the storage term V dC/dt, V = dx dy:
 //   V dC/dt + A C + corr(C) = C_in(t) b_in                                          (T1)
-// with A the first-order upwind matrix (advection, diffusion, reaction), corr the limited
-// high-order advective flux and b_in the inlet face's terms per unit inlet value (the steady
+// with A the first-order upwind matrix (advection, diffusion, reaction with the [[reaction]]
+// tables' slope bound), corr the limited high-order advective flux plus the tables' remainder
+// vol (R(C) - a C) (reaction_terms.cpp) and b_in the inlet face's terms per unit inlet value (the steady
 // assembly with C_in = 1). In time BDF2 at a constant step dt,
 //   V (3 C^{n+1} - 4 C^n + C^{n-1}) / (2 dt) + A C^{n+1} + corr(C^{n+1}) = f_{n+1} b_in,  (T2)
 // the limiter iterated within each step by deferred correction as in the steady solve, with
@@ -86,7 +87,7 @@ BoundaryRates boundary_rates(const Problem& p, const Grid& g, const std::vector<
     r.outflow += u_cell[j] * dy * c[g.index(g.nx - 1, j)];
   }
   r.held = c.sum() * vol;
-  r.reacted = p.k * r.held;
+  r.reacted = p.k * r.held + detail::reaction_total(p, g, c);
   return r;
 }
 
@@ -139,13 +140,19 @@ TransientSolution solve_transient(const TransientProblem& p, int nx, int ny,
   Problem inlet = p.space;
   inlet.inlet = nullptr;
   inlet.c_in = 1.0;
+  // The reaction terms' slope bound must be the same in the matrix and in every step's
+  // correction, whatever the inlet value: c_max, never the varying c_in (any bound will do
+  // for a field that stays at 0).
+  if (!(inlet.c_max > 0.0)) inlet.c_max = 1.0;
   const std::vector<double> u_cell = detail::cell_average_velocity(inlet, g);
   const detail::UpwindSystem sys = detail::assemble_upwind_system(inlet, g, u_cell);
   rep.assembly_seconds = seconds_since(t0);
 
   const double vol = g.dx() * g.dy();
   const double rest = p.inlet_before_start;
-  rep.started_at_rest = p.c_init == rest && p.space.k * p.c_init == 0.0;
+  // At rest: c_init is the inlet's value and nothing reacts (every rate law is 0 at C = 0).
+  const bool reacts = p.c_init != 0.0 && (p.space.k != 0.0 || !p.space.reactions.empty());
+  rep.started_at_rest = p.c_init == rest && !reacts;
   t0 = Clock::now();
   // The matrices outlive their solvers (BiCGSTAB keeps a reference to its matrix).
   const SparseMatrix bdf2_matrix = step_matrix(sys.A, 1.5 * vol / dt);
@@ -183,7 +190,8 @@ TransientSolution solve_transient(const TransientProblem& p, int nx, int ny,
     rhs = history + f * sys.b;
     c = n == 1 ? now : Eigen::VectorXd(2.0 * now - before);
     detail::UpwindSolver& solver = implicit_euler ? *euler : *bdf2;
-    bool done = opt.limiter == Limiter::upwind;
+    // Nothing to iterate for upwind advection and linear kinetics.
+    bool done = opt.limiter == Limiter::upwind && p.space.reactions.empty();
     if (done) {
       c = solver.solve(rhs, c);
       ++rep.corrections;
@@ -192,6 +200,7 @@ TransientSolution solve_transient(const TransientProblem& p, int nx, int ny,
     int sweeps = 0;
     while (!done && sweeps < opt.max_corrections) {
       detail::advective_correction(inlet, g, u_cell, opt.limiter, c, corr);
+      detail::add_reaction_correction(inlet, g, c, corr);
       const Eigen::VectorXd next = solver.solve(rhs - corr, c);
       change = (next - c).cwiseAbs().maxCoeff() / (scale > 0.0 ? scale : 1.0);
       c = next;
