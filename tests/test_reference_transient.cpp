@@ -198,8 +198,11 @@ Case kinetics_case() {
   c.species.c_init = 2.0;
   c.reactions = {Reaction{RateLaw::michaelis_menten, 1.0, 1.0, 0.5, {}},
                  Reaction{RateLaw::nth_order, 0.3, 2.0, 0.0, {}},
-                 Reaction{RateLaw::first_order, 2.0, 1.0, 0.0, {{20.0, 60.0, 4.0, 5.0, 1.0},
-                                                              {0.0, 100.0, -5.0, 5.0, 0.0}}}};
+                 Reaction{RateLaw::first_order,
+                          2.0,
+                          1.0,
+                          0.0,
+                          {{20.0, 60.0, 4.0, 5.0, 1.0}, {0.0, 100.0, -5.0, 5.0, 0.0}}}};
   return c;
 }
 
@@ -251,8 +254,8 @@ TEST(ReferenceTransientKinetics, PulseBalanceIncludesWhatReacted) {
   EXPECT_TRUE(tr.report.converged);
   const TransientBalance& b = tr.balance;
   const double closure = b.inflow - b.outflow - b.reacted - (b.held_final - b.held_initial);
-  std::printf("in %.6f, out %.6f, reacted %.6f, held %.3e: closure %.2e of the inflow\n",
-              b.inflow, b.outflow, b.reacted, b.held_final, closure / b.inflow);
+  std::printf("in %.6f, out %.6f, reacted %.6f, held %.3e: closure %.2e of the inflow\n", b.inflow,
+              b.outflow, b.reacted, b.held_final, closure / b.inflow);
   EXPECT_GT(b.reacted, 0.1 * b.inflow);
   EXPECT_LT(std::abs(closure), 1e-9 * b.inflow);
 }

@@ -44,7 +44,9 @@ double slope_bound(const Reaction& r, double k, double c_max) {
   return 0.0;
 }
 
-double c_bound(const Problem& p) { return p.c_max > 0.0 ? p.c_max : p.c_in; }
+double c_bound(const Problem& p) {
+  return p.c_max > 0.0 ? p.c_max : p.c_in;
+}
 
 }  // namespace
 

@@ -3,8 +3,8 @@
 //   V dC/dt + A C + corr(C) = C_in(t) b_in                                          (T1)
 // with A the first-order upwind matrix (advection, diffusion, reaction with the [[reaction]]
 // tables' slope bound), corr the limited high-order advective flux plus the tables' remainder
-// vol (R(C) - a C) (reaction_terms.cpp) and b_in the inlet face's terms per unit inlet value (the steady
-// assembly with C_in = 1). In time BDF2 at a constant step dt,
+// vol (R(C) - a C) (reaction_terms.cpp) and b_in the inlet face's terms per unit inlet value (the
+// steady assembly with C_in = 1). In time BDF2 at a constant step dt,
 //   V (3 C^{n+1} - 4 C^n + C^{n-1}) / (2 dt) + A C^{n+1} + corr(C^{n+1}) = f_{n+1} b_in,  (T2)
 // the limiter iterated within each step by deferred correction as in the steady solve, with
 // the step matrix factorised once:
