@@ -264,7 +264,7 @@ void SphSolver::react(double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     if (store_.kind[i] != kFluidByte) continue;
     const double c_before = store_.c[i];
-    double c = uniform ? c_before * decay : c_before;
+    double c = c_before * decay;  // exact: decay is 1 without species.k
     for (const Reaction& r : tables) {
       const double k_eff = r.zones.empty() ? r.k : r.k * zone_factor(r, store_.x[i], store_.y[i]);
       c = react_exact(r, k_eff, c, dt);
