@@ -28,7 +28,7 @@ struct Arrays {
     }
   }
   FieldFrame frame(double t, long step) const {
-    return FieldFrame{t, step, x, y, vx, vy, rho, p, c, kind};
+    return FieldFrame{t, step, x, y, vx, vy, rho, p, c, kind, {}};
   }
 };
 

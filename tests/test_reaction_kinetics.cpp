@@ -24,6 +24,8 @@ double rate(const Reaction& r, double k, double c) {
       return c > 0.0 ? k * std::pow(c, r.order) : 0.0;
     case RateLaw::michaelis_menten:
       return k * c / (r.km + c);
+    case RateLaw::bimolecular:
+      break;  // two species: test_reaction_network.cpp
   }
   return 0.0;
 }
@@ -42,12 +44,12 @@ double integrate(const Reaction& r, double k, double c0, double t) {
 }
 
 TEST(ReactionKinetics, ExactUpdatesMatchTheRateLaws) {
-  const std::vector<Reaction> laws = {{RateLaw::first_order, 1.5, 1.0, 0.0, {}},
-                                      {RateLaw::nth_order, 0.7, 2.0, 0.0, {}},
-                                      {RateLaw::nth_order, 0.4, 3.0, 0.0, {}},
-                                      {RateLaw::nth_order, 0.9, 0.5, 0.0, {}},
-                                      {RateLaw::michaelis_menten, 1.2, 1.0, 0.5, {}},
-                                      {RateLaw::michaelis_menten, 1.2, 1.0, 5.0, {}}};
+  const std::vector<Reaction> laws = {Reaction::of(RateLaw::first_order, 1.5, 1.0, 0.0, {}),
+                                      Reaction::of(RateLaw::nth_order, 0.7, 2.0, 0.0, {}),
+                                      Reaction::of(RateLaw::nth_order, 0.4, 3.0, 0.0, {}),
+                                      Reaction::of(RateLaw::nth_order, 0.9, 0.5, 0.0, {}),
+                                      Reaction::of(RateLaw::michaelis_menten, 1.2, 1.0, 0.5, {}),
+                                      Reaction::of(RateLaw::michaelis_menten, 1.2, 1.0, 5.0, {})};
   for (const Reaction& r : laws)
     for (const double t : {0.01, 0.3, 1.0}) {
       const double exact = react_exact(r, r.k, 2.0, t), ode = integrate(r, r.k, 2.0, t);
@@ -57,17 +59,18 @@ TEST(ReactionKinetics, ExactUpdatesMatchTheRateLaws) {
       EXPECT_NEAR(halves, exact, 1e-13) << to_string(r.law);
     }
   // Below first order the species is used up at finite time and stays at 0; zero order too.
-  const Reaction half{RateLaw::nth_order, 1.0, 0.5, 0.0, {}};
+  const Reaction half = Reaction::of(RateLaw::nth_order, 1.0, 0.5, 0.0, {});
   EXPECT_EQ(react_exact(half, 1.0, 1.0, 2.0 + 1e-9), 0.0);  // C^(1/2) = 1 - t/2
   EXPECT_NEAR(react_exact(half, 1.0, 1.0, 1.0), 0.25, 1e-15);
-  const Reaction zero_km{RateLaw::michaelis_menten, 1.0, 1.0, 0.0, {}};
+  const Reaction zero_km = Reaction::of(RateLaw::michaelis_menten, 1.0, 1.0, 0.0, {});
   EXPECT_DOUBLE_EQ(react_exact(zero_km, 1.0, 2.0, 0.5), 1.5);
   EXPECT_EQ(react_exact(zero_km, 1.0, 2.0, 3.0), 0.0);
   EXPECT_EQ(react_exact(laws[1], 0.7, 0.0, 1.0), 0.0);
 }
 
 TEST(ReactionKinetics, ZonesScaleTheRateConstant) {
-  Reaction r{RateLaw::first_order, 1.0, 1.0, 0.0, {{10, 20, -5, 0, 3.0}, {15, 30, -5, 5, 0.5}}};
+  Reaction r = Reaction::of(RateLaw::first_order, 1.0, 1.0, 0.0,
+                            {{10, 20, -5, 0, 3.0}, {15, 30, -5, 5, 0.5}});
   EXPECT_EQ(zone_factor(r, 12.0, -1.0), 3.0);
   EXPECT_EQ(zone_factor(r, 16.0, -1.0), 3.0);  // the first zone that holds the point
   EXPECT_EQ(zone_factor(r, 16.0, 1.0), 0.5);
@@ -141,7 +144,7 @@ TEST(ReactionKinetics, SteadyBoundMatchesTheFirstOrderClosedForm) {
   Case closed;
   Case table = closed;
   table.species.k = 0.0;
-  table.reactions = {{RateLaw::first_order, closed.species.k, 1.0, 0.0, {}}};
+  table.reactions = {Reaction::of(RateLaw::first_order, closed.species.k, 1.0, 0.0, {})};
   const double t_closed = steady_criterion(closed).t_min, t_table = steady_criterion(table).t_min;
   EXPECT_GT(t_closed, 1.0);
   EXPECT_NEAR(t_table, t_closed, 0.0101);
@@ -157,9 +160,10 @@ TEST(ReactionKinetics, SteadyBoundMatchesTheFirstOrderClosedForm) {
 // so its C is the batch solution at that age, up to the step in which it crossed x = 0 (and a
 // zone edge): at most ~2 dt of reaction.
 TEST(ReactionKinetics, PrescribedFlowParticlesAreBatchReactors) {
-  for (const Reaction& r : {Reaction{RateLaw::nth_order, 0.8, 2.0, 0.0, {}},
-                            Reaction{RateLaw::michaelis_menten, 3.0, 1.0, 0.4, {}},
-                            Reaction{RateLaw::first_order, 2.0, 1.0, 0.0, {{5, 10, -5, 5, 4.0}}}}) {
+  for (const Reaction& r :
+       {Reaction::of(RateLaw::nth_order, 0.8, 2.0, 0.0, {}),
+        Reaction::of(RateLaw::michaelis_menten, 3.0, 1.0, 0.4, {}),
+        Reaction::of(RateLaw::first_order, 2.0, 1.0, 0.0, {{5, 10, -5, 5, 4.0}})}) {
     Case c = testing::short_channel(Scheme::modern, Flow::prescribed);
     c.species.D = 0.0;
     c.species.k = 0.0;

@@ -79,8 +79,8 @@ double batch_mm(double c_in, double k, double km, double t) {
 
 TEST(ReferenceKinetics, PlugFlowFollowsTheBatchSolutions) {
   const double U = 100.0;
-  for (const Reaction& r : {Reaction{RateLaw::nth_order, 0.75, 2.0, 0.0, {}},
-                            Reaction{RateLaw::michaelis_menten, 1.0, 1.0, 0.5, {}}}) {
+  for (const Reaction& r : {Reaction::of(RateLaw::nth_order, 0.75, 2.0, 0.0, {}),
+                            Reaction::of(RateLaw::michaelis_menten, 1.0, 1.0, 0.5, {})}) {
     std::vector<double> errors;
     for (const int nx : {400, 800}) {
       Problem p;
@@ -113,7 +113,7 @@ TEST(ReferenceKinetics, FirstOrderTableEqualsSpeciesK) {
   with_k.velocity = parabolic_profile(200.0, 5.0);
   Problem with_table = with_k;
   with_table.k = 0.0;
-  with_table.reactions = {Reaction{RateLaw::first_order, with_k.k, 1.0, 0.0, {}}};
+  with_table.reactions = {Reaction::of(RateLaw::first_order, with_k.k, 1.0, 0.0, {})};
   const Solution a = solve_steady(with_k, 200, 20), b = solve_steady(with_table, 200, 20);
   double diff = 0.0;
   for (std::size_t i = 0; i < a.c.size(); ++i) diff = std::max(diff, std::abs(a.c[i] - b.c[i]));
@@ -123,14 +123,14 @@ TEST(ReferenceKinetics, FirstOrderTableEqualsSpeciesK) {
 // Problems the reference cannot take are refused with the reaction named.
 TEST(ReferenceKinetics, UnboundedSlopesAreRefused) {
   Case c;
-  c.reactions = {Reaction{RateLaw::nth_order, 1.0, 0.5, 0.0, {}}};
+  c.reactions = {Reaction::of(RateLaw::nth_order, 1.0, 0.5, 0.0, {})};
   try {
     problem_from_case(c);
     FAIL() << "accepted n = 0.5";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("reaction[0]"), std::string::npos) << e.what();
   }
-  c.reactions = {Reaction{RateLaw::michaelis_menten, 1.0, 1.0, 0.5, {}}};
+  c.reactions = {Reaction::of(RateLaw::michaelis_menten, 1.0, 1.0, 0.5, {})};
   EXPECT_NO_THROW(problem_from_case(c));
 }
 

@@ -196,13 +196,10 @@ Case kinetics_case() {
   c.species.k = 0.0;
   c.species.c_in = 2.0;
   c.species.c_init = 2.0;
-  c.reactions = {Reaction{RateLaw::michaelis_menten, 1.0, 1.0, 0.5, {}},
-                 Reaction{RateLaw::nth_order, 0.3, 2.0, 0.0, {}},
-                 Reaction{RateLaw::first_order,
-                          2.0,
-                          1.0,
-                          0.0,
-                          {{20.0, 60.0, 4.0, 5.0, 1.0}, {0.0, 100.0, -5.0, 5.0, 0.0}}}};
+  c.reactions = {Reaction::of(RateLaw::michaelis_menten, 1.0, 1.0, 0.5, {}),
+                 Reaction::of(RateLaw::nth_order, 0.3, 2.0, 0.0, {}),
+                 Reaction::of(RateLaw::first_order, 2.0, 1.0, 0.0,
+                              {{20.0, 60.0, 4.0, 5.0, 1.0}, {0.0, 100.0, -5.0, 5.0, 0.0}})};
   return c;
 }
 
@@ -269,7 +266,7 @@ TEST(ReferenceTransientKinetics, FirstOrderTableEqualsSpeciesK) {
   with_k.output.outlet_interval = 0.04;
   Case with_table = with_k;
   with_table.species.k = 0.0;
-  with_table.reactions = {Reaction{RateLaw::first_order, 1.462, 1.0, 0.0, {}}};
+  with_table.reactions = {Reaction::of(RateLaw::first_order, 1.462, 1.0, 0.0, {})};
   TransientOptions opt;
   opt.dt = 0.004;
   const auto a = solve_transient(transient_problem_from_case(with_k), 80, 8, opt);

@@ -16,14 +16,18 @@ enum class Flow { wcsph, prescribed };
 // The inlet concentration in time (`species.feed.shape`): c_in throughout, a step from `base`
 // to c_in at t0, a pulse of c_in over [t0, t0 + width) on `base`, or a table of (t, C) points.
 enum class FeedShape { constant, step, pulse, table };
-// Rate laws of a `[[reaction]]` table, R the moles consumed per volume and time:
-// first_order R = k C, nth_order R = k C^n, michaelis_menten R = k C / (km + C).
-enum class RateLaw { first_order, nth_order, michaelis_menten };
+// Rate laws of a `[[reaction]]` table, R the moles of each reactant consumed per volume and
+// time: first_order R = k C, nth_order R = k C^n, michaelis_menten R = k C / (km + C), all of
+// one reactant; bimolecular R = k C_A C_B of two (A + B -> products).
+enum class RateLaw { first_order, nth_order, michaelis_menten, bimolecular };
 
-// One `[[reaction]]` table: a reaction that consumes the species (species/reaction_kinetics.hpp).
+// One `[[reaction]]` table (species/reaction_kinetics.hpp): consumes its reactants at R each
+// and makes R of each product.
 struct Reaction {
   RateLaw law = RateLaw::first_order;  // `law`
-  double k = 0.0;      // `k`: 1/s; (mol/m^3)^(1-n)/s for nth_order; mol/(m^3 s) (v_max) for MM
+  // `k`: 1/s; (mol/m^3)^(1-n)/s for nth_order; mol/(m^3 s) (v_max) for MM; m^3/(mol s) for
+  // bimolecular
+  double k = 0.0;
   double order = 1.0;  // `order`, n of nth_order
   double km = 0.0;     // `km` [mol/m^3], Michaelis constant
   // `zones = [[x0, x1, y0, y1, factor], ...]`: k(x, y) = factor k in the first zone that holds
@@ -32,6 +36,23 @@ struct Reaction {
     double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0, factor = 1.0;
   };
   std::vector<Zone> zones;
+  // `reactants = ["A", "B"]`, `products = ["C"]`: species by name, resolved to indices into
+  // Case::species_at() when the case is loaded. Without `reactants`, the first species; one
+  // for every law but bimolecular, which takes two different ones.
+  std::vector<std::string> reactant_names, product_names;
+  std::vector<int> reactants = {0}, products;
+
+  // A reaction of the first species with no products (the one-species form).
+  static Reaction of(RateLaw law, double k, double order = 1.0, double km = 0.0,
+                     std::vector<Zone> zones = {}) {
+    Reaction r;
+    r.law = law;
+    r.k = k;
+    r.order = order;
+    r.km = km;
+    r.zones = std::move(zones);
+    return r;
+  }
 };
 
 struct Case {
@@ -70,12 +91,15 @@ struct Case {
     double background_pressure = 0.025;  // `fluid.background_pressure`, p_b / (rho0 c0^2)
   } fluid;
 
+  // The first species: `[species]`, or the first of several `[[species]]` tables (then its
+  // keys are name, D, c_in, c_init and feed; species.k and species.ale belong to one species).
   struct Species {
-    double D = 10.0;      // `species.D` [mm^2/s]
-    double k = 1.462;     // `species.k` [1/s], first-order reaction rate
-    double c_in = 2.0;    // `species.c_in` [mol/m^3], inlet concentration
-    double c_init = 2.0;  // `species.c_init` [mol/m^3], initial concentration
-    bool ale = false;     // `species.ale`, add du . grad C (consistent ALE form, modern only)
+    std::string name = "C";  // `species.name`: names its outputs (probes_<name>.csv, ...)
+    double D = 10.0;         // `species.D` [mm^2/s]
+    double k = 1.462;        // `species.k` [1/s], first-order reaction rate
+    double c_in = 2.0;       // `species.c_in` [mol/m^3], inlet concentration
+    double c_init = 2.0;     // `species.c_init` [mol/m^3], initial concentration
+    bool ale = false;        // `species.ale`, add du . grad C (consistent ALE form, modern only)
     // `[species.feed]`: the inlet concentration as a function of time (species/inlet_feed.hpp).
     struct Feed {
       FeedShape shape = FeedShape::constant;  // `species.feed.shape`
@@ -85,6 +109,18 @@ struct Case {
       std::vector<std::array<double, 2>> table;  // `species.feed.table`, [[t, C], ...]
     } feed;
   } species;
+  // The second and later `[[species]]` tables (species.k = 0 and species.ale = false for all).
+  std::vector<Species> more_species;
+  // At most this many species: the particle store holds one array per species, and the fused
+  // species loop is written for a fixed number of them (particle_store.hpp).
+  static constexpr int kMaxSpecies = 4;
+  int species_count() const { return 1 + static_cast<int>(more_species.size()); }
+  const Species& species_at(int s) const {
+    return s == 0 ? species : more_species[static_cast<std::size_t>(s - 1)];
+  }
+  Species& species_at(int s) {
+    return s == 0 ? species : more_species[static_cast<std::size_t>(s - 1)];
+  }
 
   // `[[reaction]]` tables: reactions besides species.k's first-order one (a case file with
   // `[[reaction]]` tables and no species.k has species.k = 0). Rates add.

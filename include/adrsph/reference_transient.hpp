@@ -1,5 +1,7 @@
 // The transient mode of the reference (docs/reference.md, "Transient mode"):
-//   dC/dt + u(y) dC/dx = D (C_xx + C_yy) - k C,   C(x, y, 0) = c_init,
+//   dC/dt + u(y) dC/dx = D (C_xx + C_yy) - k C - R(C),   C(x, y, 0) = c_init,
+//   (R: the case's [[reaction]] tables, iterated inside each step as the steady solve does;
+//   one species: a network's reference is steady only, reference_network.hpp),
 //   C(0, y, t) = C_in(t) (the same for every y), dC/dn = 0 at the walls, and at x = L the
 //   steady solver's outlet: no diffusive flux, advective face value = the last cell's,
 // on the steady solver's grid with its spatial discretisation (reference.hpp), BDF2 in time.

@@ -38,6 +38,8 @@ struct FieldFrame {
   long step = 0;
   std::span<const double> x, y, vx, vy, rho, p, c;  // mm, mm/s, kg/m^3, Pa, mol/m^3
   std::span<const std::uint8_t> kind;               // values of Kind
+  // The second and later species of a network: (dataset name "c_<species name>", values).
+  std::vector<std::pair<std::string, std::span<const double>>> more_c;
 };
 
 struct Progress {
@@ -117,8 +119,16 @@ struct RunResult {
   double t_steady = 0.0;
   long lost_particles = 0;
   std::vector<std::pair<std::string, double>> phase_seconds;  // timer name -> seconds
-  ProbeTable probes;
+  ProbeTable probes;                                          // of the first species
   StationTable stations;
+  // The second and later species of a network, sampled as the first (probes_<name>.csv,
+  // stations_<name>.csv).
+  struct SpeciesProbes {
+    std::string name;
+    ProbeTable probes;
+    StationTable stations;
+  };
+  std::vector<SpeciesProbes> more_species;
   double average_window =
       0.0;  // probes averaged over [t_reached - window, t_reached]; 0: instantaneous
   std::string probe_interpolation;  // how probes were computed (text for run.json)

@@ -7,13 +7,14 @@ namespace adrsph {
 
 ProbeSampler::FlowSample ProbeSampler::flow_sample_at(double x, double y) const {
   double num = 0.0, flow = 0.0, den = 0.0;
+  const double* c = species ? species : particles.c.data();
   grid.for_each_near(x, y, rings, [&](std::uint32_t j) {
     // Every particle that carries species: fluid and both buffers (the outflow buffer
     // holds the C its particles carried through x = L, a zero-gradient continuation).
     if (particles.kind[j] == kWallByte) return;
     const double rx = x - particles.x[j], ry = y - particles.y[j];
     const double w = particles.vol[j] * kernel.value(std::sqrt(rx * rx + ry * ry));
-    num += w * particles.c[j];
+    num += w * c[j];
     flow += w * particles.vx[j];
     den += w;
   });

@@ -21,6 +21,8 @@ struct ProbeSampler {
   // sort to be found (SphSolver::sampler()). Sampling never re-sorts: watching a run does not
   // change it.
   int rings = 1;
+  // The species sampled: one of the store's concentration arrays (nullptr: particles.c).
+  const double* species = nullptr;
 
   // C and the streamwise velocity at a point, with the same weights.
   struct FlowSample {

@@ -1,5 +1,6 @@
 #include "analysis/steady_state.hpp"
 
+#include <algorithm>
 #include <array>
 #include <limits>
 
@@ -85,9 +86,82 @@ class KineticsBound {
   BatchTable from_inlet_, from_initial_;
 };
 
+// The same bound for a network of several species (steady_state.hpp, condition 1): the batch
+// state B(tau) of all species together (batch_state), from the inlet values and from the
+// initial ones, tabulated on the log-spaced tau of BatchTable. A product need not decrease
+// in tau, so the second term is |B(t; in) - B(L/u; in)|. Each species' bound is relative to
+// its steady outlet section average, or to 1% of the concentration scale for a species that
+// leaves with less; the largest over the species counts.
+class NetworkBound {
+ public:
+  explicit NetworkBound(const Case& c) : c_(c), scale_(concentration_scale(c)) {
+    std::vector<double> in, init;
+    for (int s = 0; s < c.species_count(); ++s) {
+      in.push_back(c.species_at(s).c_in);
+      init.push_back(c.species_at(s).c_init);
+    }
+    double tau = 0.0;
+    from_inlet_.push_back(in);
+    from_initial_.push_back(init);
+    taus_.push_back(0.0);
+    for (int i = 0; i < kPoints; ++i) {
+      const double next = kTau0 * std::pow(kRatio, i);
+      in = batch_state(c, in, next - tau);
+      init = batch_state(c, init, next - tau);
+      tau = next;
+      taus_.push_back(tau);
+      from_inlet_.push_back(in);
+      from_initial_.push_back(init);
+    }
+  }
+  double operator()(double t) const {
+    const double L = c_.geometry.length, u_max = c_.u_max();
+    constexpr int n = 4000;
+    double worst = 0.0;
+    for (int s = 0; s < c_.species_count(); ++s) {
+      double steady = 0.0, excess = 0.0;
+      const double b_in = at(from_inlet_, t, s), b_init = at(from_initial_, t, s);
+      for (int i = 0; i < n; ++i) {
+        const double eta = (i + 0.5) / n;
+        const double u = u_max * (1.0 - eta * eta);
+        const double c_steady = at(from_inlet_, L / u, s);
+        steady += c_steady;
+        if (u * t < L) excess += std::fabs(b_init - b_in) + std::fabs(b_in - c_steady);
+      }
+      worst = std::max(worst, excess / std::max(steady, 1e-2 * scale_ * n));
+    }
+    return worst;
+  }
+
+ private:
+  // Linear in tau between the tabulated points, the last value beyond them.
+  double at(const std::vector<std::vector<double>>& table, double tau, int s) const {
+    const auto it = std::upper_bound(taus_.begin(), taus_.end(), tau);
+    if (it == taus_.end()) return table.back()[static_cast<std::size_t>(s)];
+    const std::size_t i = static_cast<std::size_t>(it - taus_.begin());
+    const double w = (tau - taus_[i - 1]) / (taus_[i] - taus_[i - 1]);
+    return table[i - 1][static_cast<std::size_t>(s)] +
+           w * (table[i][static_cast<std::size_t>(s)] - table[i - 1][static_cast<std::size_t>(s)]);
+  }
+  static constexpr int kPoints = 1201;
+  static constexpr double kTau0 = 1e-6;
+  static constexpr double kRatio = 1.023292992280754;  // as BatchTable
+  const Case& c_;
+  double scale_;
+  std::vector<double> taus_;
+  std::vector<std::vector<double>> from_inlet_, from_initial_;
+};
+
 }  // namespace
 
+double concentration_scale(const Case& c) {
+  double scale = 0.0;
+  for (int s = 0; s < c.species_count(); ++s) scale = std::max(scale, c.species_at(s).c_in);
+  return std::max(scale, 1e-300);
+}
+
 double cold_start_transient(const Case& c, double t) {
+  if (c.species_count() > 1) return NetworkBound(c)(t);
   if (!c.reactions.empty()) return KineticsBound(c)(t);
   const double L = c.geometry.length, u_max = c.u_max();
   const double k = c.species.k, c_in = c.species.c_in;
@@ -118,12 +192,15 @@ SteadyCriterion steady_criterion(const Case& c) {
   SteadyCriterion s;
   s.tol = c.time.steady_tol;
   s.window = c.time.steady_window;
-  s.scale = std::max(c.species.c_in, 1e-300);
+  s.scale = concentration_scale(c);
   // The earliest time the bound on the cold-start transient allows (it only decreases).
   s.t_min = 0.0;
   if (c.time.steady_sweep_tol > 0.0) {
     const double step = 0.01;
-    if (c.reactions.empty()) {
+    if (c.species_count() > 1) {
+      const NetworkBound bound(c);
+      while (s.t_min < c.time.t_end && bound(s.t_min) > c.time.steady_sweep_tol) s.t_min += step;
+    } else if (c.reactions.empty()) {
       while (s.t_min < c.time.t_end && cold_start_transient(c, s.t_min) > c.time.steady_sweep_tol)
         s.t_min += step;
     } else {
@@ -131,7 +208,11 @@ SteadyCriterion steady_criterion(const Case& c) {
       while (s.t_min < c.time.t_end && bound(s.t_min) > c.time.steady_sweep_tol) s.t_min += step;
     }
   }
-  if (c.species.feed.shape == FeedShape::step) s.t_min += c.species.feed.t0;
+  double t_step = 0.0;  // the latest step of a species' feed starts the sweep
+  for (int sp = 0; sp < c.species_count(); ++sp)
+    if (c.species_at(sp).feed.shape == FeedShape::step)
+      t_step = std::max(t_step, c.species_at(sp).feed.t0);
+  s.t_min += t_step;
   return s;
 }
 

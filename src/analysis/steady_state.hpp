@@ -13,6 +13,8 @@
 //    from the same state at t = 0 (a warm start changes C, not how long the flow needs).
 //    With [[reaction]] tables the same bound takes the batch solution of the case's kinetics
 //    (species/reaction_kinetics.hpp) in place of c exp(-kt).
+//    A network of several species takes the batch state of all of them (the largest bound
+//    over the species counts).
 //    A step feed (species.feed.shape = "step") starts the same sweep at its step instant t0,
 //    from a field of at most max(c_init, base): t_min is counted from t0.
 // 2. The probe profiles stop changing. Single snapshots carry sampling noise (rows of
@@ -39,6 +41,9 @@ struct SteadyCriterion {
   double scale = 1.0;   // concentration scale (c_in)
 };
 
+// The concentration scale the steady test's change is relative to: the largest inlet value
+// of the species.
+double concentration_scale(const Case& c);
 // The criterion of a case (time.steady_* keys).
 SteadyCriterion steady_criterion(const Case& c);
 // Bound on the remaining cold-start transient of the outlet section average at time t,

@@ -17,12 +17,15 @@ ChannelScene::ChannelScene(const Case& c)
       half_width_(c.geometry.half_width),
       u_max_(c.u_max()),
       rho0_(c.fluid.rho0),
-      c_in_(c.species.c_in),
-      c_init_(c.species.c_init),
       jitter_(c.particles.jitter),
       wall_layers_(c.particles.wall_layers),
       inlet_layers_(c.particles.inlet_layers),
       outlet_layers_(c.particles.outlet_layers) {
+  for (int sp = 0; sp < c.species_count(); ++sp) {
+    c_in_[static_cast<std::size_t>(sp)] = c.species_at(sp).c_in;
+    c_init_[static_cast<std::size_t>(sp)] = c.species_at(sp).c_init;
+  }
+  more_species_ = static_cast<std::size_t>(c.species_count() - 1);
   wall_x0_ = -(inlet_layers_ + wall_layers_) * dx_;
   wall_x1_ = length_ + (outlet_layers_ + wall_layers_) * dx_;
   const int ny = static_cast<int>(std::lround(2.0 * half_width_ / dx_));
@@ -56,7 +59,7 @@ void ChannelScene::initialise(ParticleStore& s) const {
   for_each_initial([&](double x, double y, Kind k) {
     switch (k) {
       case Kind::inlet:
-        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_in_, k);
+        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_in_[0], k, more(c_in_));
         break;
       case Kind::wall:
         s.push_back(x, y, 0.0, 0.0, rho0_, 0.0, k);
@@ -66,10 +69,10 @@ void ChannelScene::initialise(ParticleStore& s) const {
           x += offset(rng);
           y += offset(rng);
         }
-        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_, k);
+        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_[0], k, more(c_init_));
         break;
       default:
-        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_, k);
+        s.push_back(x, y, inflow_velocity(y), 0.0, rho0_, c_init_[0], k, more(c_init_));
         break;
     }
   });
@@ -127,8 +130,8 @@ void ChannelScene::feed_and_drain(ParticleStore& s, std::vector<char>& keep, lon
   for (std::size_t r = 0; r < row_y_.size(); ++r) {
     while (row_tail_x_[r] - dx_ >= x_first - 1e-9 * dx_) {
       row_tail_x_[r] -= dx_;
-      s.push_back(row_tail_x_[r], row_y_[r], inflow_velocity(row_y_[r]), 0.0, rho0_, c_in_,
-                  Kind::inlet);
+      s.push_back(row_tail_x_[r], row_y_[r], inflow_velocity(row_y_[r]), 0.0, rho0_, c_in_[0],
+                  Kind::inlet, more(c_in_));
       keep.push_back(1);
     }
   }

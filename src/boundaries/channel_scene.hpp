@@ -4,7 +4,9 @@
 // particles keep their velocity and C (zero gradient) until they are removed.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "adrsph/case.hpp"
@@ -61,14 +63,23 @@ class ChannelScene {
   const std::vector<double>& inflow_row_tails() const { return row_tail_x_; }
   void set_inflow_row_tails(std::vector<double> tails);
 
-  // The C given to inlet particles fed from now on (a feed that varies in time).
-  void set_inlet_concentration(double c) { c_in_ = c; }
+  // The C of species s given to inlet particles fed from now on (a feed that varies in time).
+  void set_inlet_concentration(int species, double c) {
+    c_in_[static_cast<std::size_t>(species)] = c;
+  }
 
   double length() const { return length_; }
   double half_width() const { return half_width_; }
 
  private:
-  double dx_, length_, half_width_, u_max_, rho0_, c_in_, c_init_, jitter_;
+  using PerSpecies = std::array<double, Case::kMaxSpecies>;
+  // The values of the second and later species (ParticleStore::push_back's c_more).
+  std::span<const double> more(const PerSpecies& v) const {
+    return std::span<const double>(v).subspan(1, more_species_);
+  }
+  double dx_, length_, half_width_, u_max_, rho0_, jitter_;
+  PerSpecies c_in_{}, c_init_{};  // inlet and initial C of every species
+  std::size_t more_species_ = 0;
   int wall_layers_, inlet_layers_, outlet_layers_;
   double wall_x0_, wall_x1_;
   std::vector<double> row_y_;       // inflow rows

@@ -104,14 +104,17 @@ std::vector<std::array<double, N>> read_tuples(const toml::node& n, const ValueS
 std::vector<Reaction> read_reactions(const toml::node& n, const ValueSource& src) {
   const auto* a = n.as_array();
   if (!a) fail(src, "an array of tables ([[reaction]] sections)", n);
-  const std::vector<std::string> laws = {"first_order", "nth_order", "michaelis_menten"};
+  const std::vector<std::string> laws = {"first_order", "nth_order", "michaelis_menten",
+                                         "bimolecular"};
   std::vector<Reaction> out;
   for (std::size_t i = 0; i < a->size(); ++i) {
     ValueSource item = src;
     item.key = src.key + "[" + std::to_string(i) + "]";
     item.raw.reset();
     const auto* t = a->get(i)->as_table();
-    if (!t) fail(item, "a table ([[reaction]] with law, k, order, km, zones)", *a->get(i));
+    if (!t)
+      fail(item, "a table ([[reaction]] with law, k, order, km, zones, reactants, products)",
+           *a->get(i));
     Reaction r;
     for (const auto& [name, v] : *t) {
       ValueSource f = item;
@@ -122,7 +125,7 @@ std::vector<Reaction> read_reactions(const toml::node& n, const ValueSource& src
         if (it == laws.end())
           throw CaseError(f.file, f.key,
                           "expected one of \"first_order\" | \"nth_order\" | "
-                          "\"michaelis_menten\", got \"" +
+                          "\"michaelis_menten\" | \"bimolecular\", got \"" +
                               law + "\"");
         r.law = static_cast<RateLaw>(it - laws.begin());
       } else if (name == "k") {
@@ -135,15 +138,71 @@ std::vector<Reaction> read_reactions(const toml::node& n, const ValueSource& src
         for (const auto& z : read_tuples<5>(v, f, "a zone [x0, x1, y0, y1, factor]", "zones",
                                             "[[20.0, 40.0, -5.0, 5.0, 10.0]]"))
           r.zones.push_back({z[0], z[1], z[2], z[3], z[4]});
+      } else if (name == "reactants" || name == "products") {
+        const auto* list = v.as_array();
+        if (!list) fail(f, "an array of species names, e.g. [\"A\", \"B\"]", v);
+        std::vector<std::string>& names = name == "reactants" ? r.reactant_names : r.product_names;
+        for (std::size_t j = 0; j < list->size(); ++j) {
+          ValueSource e = f;
+          e.key = f.key + "[" + std::to_string(j) + "]";
+          names.push_back(read_string(*list->get(j), e));
+        }
       } else {
         throw CaseError(f.file, f.key,
-                        "unknown key; a [[reaction]] table has law, k, order, km and zones "
-                        "(cases/README.md)");
+                        "unknown key; a [[reaction]] table has law, k, order, km, zones, "
+                        "reactants and products (cases/README.md)");
       }
     }
     out.push_back(r);
   }
   return out;
+}
+
+// The [[species]] tables: each sets a species' name, D, c_in, c_init and [species.feed] with
+// the readers of the single [species] table's keys (applied to a scratch case). The first
+// table is Case::species, the others Case::more_species.
+void read_species_list(Case& c, const toml::node& n, const ValueSource& src) {
+  const auto* a = n.as_array();
+  if (!a) fail(src, "a table ([species]) or an array of tables ([[species]] sections)", n);
+  if (a->empty()) fail(src, "at least one [[species]] table", n);
+  std::vector<Case::Species> list;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    ValueSource item = src;
+    item.key = src.key + "[" + std::to_string(i) + "]";
+    item.raw.reset();
+    const auto* t = a->get(i)->as_table();
+    if (!t) fail(item, "a table ([[species]] with name, D, c_in, c_init, feed)", *a->get(i));
+    Case scratch;
+    scratch.species = Case::Species{};
+    auto apply = [&](const std::string& key, const toml::node& v, const std::string& shown) {
+      const KeyDef* def = find_key(key);
+      if (!def)
+        throw CaseError(src.file, shown,
+                        "unknown key; a [[species]] table has name, D, c_in, c_init and feed "
+                        "(species.k and species.ale are for a single [species] table; give "
+                        "reactions as [[reaction]] tables, cases/README.md)");
+      def->set(scratch, v, ValueSource{src.file, shown, std::nullopt});
+    };
+    for (const auto& [name, v] : *t) {
+      const std::string leaf_name(name.str());
+      const std::string shown = item.key + "." + leaf_name;
+      if (leaf_name == "feed") {
+        const auto* feed = v.as_table();
+        if (!feed) fail(ValueSource{src.file, shown, std::nullopt}, "a table ([species.feed])", v);
+        for (const auto& [fk, fv] : *feed)
+          apply("species.feed." + std::string(fk.str()), fv, shown + "." + std::string(fk.str()));
+      } else if (leaf_name == "name" || leaf_name == "D" || leaf_name == "c_in" ||
+                 leaf_name == "c_init") {
+        apply("species." + leaf_name, v, shown);
+      } else {
+        apply("", v, shown);
+      }
+    }
+    list.push_back(scratch.species);
+  }
+  c.species = list.front();
+  c.species.k = 0.0;  // reactions of several species are [[reaction]] tables
+  c.more_species.assign(list.begin() + 1, list.end());
 }
 
 template <class Get>
@@ -236,6 +295,12 @@ std::vector<KeyDef> make_keys() {
   k.push_back(number(
       "fluid.background_pressure", [](Case & c) -> auto& { return c.fluid.background_pressure; }));
 
+  k.push_back(
+      {"species", "a table ([species]) or an array of tables ([[species]])",
+       [](Case& c, const toml::node& n, const ValueSource& s) { read_species_list(c, n, s); }});
+  k.push_back({"species.name", "a string", [](Case& c, const toml::node& n, const ValueSource& s) {
+                 c.species.name = read_string(n, s);
+               }});
   k.push_back(number(
       "species.D", [](Case & c) -> auto& { return c.species.D; }));
   k.push_back(number(

@@ -28,7 +28,11 @@ void collect(const toml::table& t, const std::string& prefix, const std::string&
     const std::string key =
         prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     const long line = static_cast<long>(v.source().begin.line);
-    if (!find_key(key) && (is_section(key) || (v.is_table() && !v.as_table()->empty()))) {
+    // `species` is both: a [species] table of keys and an array of [[species]] tables.
+    const bool descend = v.is_table()
+                             ? is_section(key) || (!find_key(key) && !v.as_table()->empty())
+                             : !find_key(key) && is_section(key);
+    if (descend) {
       // A known table, or an unknown one: its leaves are reported with their full keys.
       if (const auto* sub = v.as_table()) {
         collect(*sub, key, file, out);
@@ -114,6 +118,33 @@ std::string apply_override(Case& c, const std::string& text) {
   return key;
 }
 
+// The species names of the [[reaction]] tables as indices into Case::species_at().
+void resolve_species_names(Case& c, const std::string& file) {
+  auto index_of = [&](const std::string& name, const std::string& key) {
+    std::string known;
+    for (int s = 0; s < c.species_count(); ++s) {
+      if (c.species_at(s).name == name) return s;
+      known += (s ? ", \"" : "\"") + c.species_at(s).name + "\"";
+    }
+    throw CaseError(file, key,
+                    "expected the name of a species (" + known + "), got \"" + name + "\"");
+  };
+  for (std::size_t i = 0; i < c.reactions.size(); ++i) {
+    Reaction& r = c.reactions[i];
+    const std::string key = "reaction[" + std::to_string(i) + "].";
+    if (!r.reactant_names.empty()) {
+      r.reactants.clear();
+      for (std::size_t j = 0; j < r.reactant_names.size(); ++j)
+        r.reactants.push_back(
+            index_of(r.reactant_names[j], key + "reactants[" + std::to_string(j) + "]"));
+    }
+    r.products.clear();
+    for (std::size_t j = 0; j < r.product_names.size(); ++j)
+      r.products.push_back(
+          index_of(r.product_names[j], key + "products[" + std::to_string(j) + "]"));
+  }
+}
+
 }  // namespace
 
 Case load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
@@ -150,7 +181,13 @@ Case load_case_text(const std::string& text, const std::filesystem::path& file,
   // species.k's default (1.462 1/s, the paper's) is the reaction of a case without
   // [[reaction]] tables; with them, only what they say reacts unless species.k is given.
   if (!c.reactions.empty() && !k_given && overridden.count("species.k") == 0) c.species.k = 0.0;
-  if (const auto p = case_detail::find_problem(c)) {
+  // A bad species table is named as such, not as a reaction's unknown species.
+  auto problem = case_detail::find_species_problem(c);
+  if (!problem) {
+    resolve_species_names(c, name);
+    problem = case_detail::find_problem(c);
+  }
+  if (const auto& p = problem) {
     // A value that came from --set is blamed on --set, not on the file.
     const bool from_set = overridden.count(p->key.substr(0, p->key.find('['))) > 0;
     throw CaseError(from_set ? "--set" : name, p->key, p->expected);

@@ -131,19 +131,60 @@ void check_fluid_species(Checker& k, const Case& c) {
   k.range("modern.shift_max", c.modern.shift_max, 0.0, false, 1.0, false);
 }
 
-// The inlet feed in time (species/inlet_feed.hpp).
-void check_feed(Checker& k, const Case& c) {
-  const auto& f = c.species.feed;
+// The key prefix of species s in messages: "species." for a case of one species, else
+// "species[s]." (the [[species]] table).
+std::string species_key(const Case& c, int s) {
+  return c.more_species.empty() ? std::string("species.") : "species[" + std::to_string(s) + "].";
+}
+
+// Species names label files (probes_<name>.csv) and datasets: letters, digits and _.
+bool valid_species_name(const std::string& n) {
+  if (n.empty() || n.size() > 32) return false;
+  for (const char ch : n)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_')) return false;
+  return true;
+}
+
+// Every species but the first (check_fluid_species has it): name, D, C values.
+void check_more_species(Checker& k, const Case& c) {
+  k.require(c.species_count() <= Case::kMaxSpecies, "species",
+            "expected at most " + std::to_string(Case::kMaxSpecies) + " [[species]] tables, got " +
+                std::to_string(c.species_count()));
+  for (int s = 0; s < c.species_count(); ++s) {
+    const Case::Species& sp = c.species_at(s);
+    const std::string key = species_key(c, s);
+    k.require(valid_species_name(sp.name), key + "name",
+              "expected a name of 1 to 32 letters, digits and _ (it names output files), got \"" +
+                  sp.name.substr(0, 40) + "\"");
+    for (int o = 0; o < s; ++o)
+      k.require(c.species_at(o).name != sp.name, key + "name",
+                "expected a name no other species has, got \"" + sp.name + "\" twice");
+    if (s == 0) continue;
+    k.non_negative(key + "D", sp.D);
+    k.range(key + "c_in", sp.c_in, 0.0, false, kMaxStateValue, false);
+    k.range(key + "c_init", sp.c_init, 0.0, false, kMaxStateValue, false);
+  }
+  k.require(c.more_species.empty() || !c.species.ale, "species.ale",
+            "expected false with several species (the ALE term is written for one), got true");
+  k.require(c.more_species.empty() || !c.time.warm_start, "time.warm_start",
+            "expected false with several species (the warm start hands over the field of one), "
+            "got true");
+}
+
+// The inlet feed in time of species s (species/inlet_feed.hpp).
+void check_feed(Checker& k, const Case& c, int s) {
+  const auto& f = c.species_at(s).feed;
   if (f.shape == FeedShape::constant) return;
-  k.range("species.feed.t0", f.t0, 0.0, false, kMaxStateValue, false);
-  k.range("species.feed.base", f.base, 0.0, false, kMaxStateValue, false);
-  if (f.shape == FeedShape::pulse) k.positive("species.feed.width", f.width);
+  const std::string fk = species_key(c, s) + "feed.";
+  k.range(fk + "t0", f.t0, 0.0, false, kMaxStateValue, false);
+  k.range(fk + "base", f.base, 0.0, false, kMaxStateValue, false);
+  if (f.shape == FeedShape::pulse) k.positive(fk + "width", f.width);
   if (f.shape == FeedShape::table) {
-    std::string few = "expected at least two [t, C] points with species.feed.shape = ";
+    std::string few = "expected at least two [t, C] points with " + fk + "shape = ";
     few.append("\"table\", got ").append(std::to_string(f.table.size()));
-    k.require(f.table.size() >= 2, "species.feed.table", few);
+    k.require(f.table.size() >= 2, fk + "table", few);
     for (std::size_t i = 0; i < f.table.size(); ++i) {
-      std::string key = "species.feed.table[";
+      std::string key = fk + "table[";
       key.append(std::to_string(i)).append("]");
       const std::string t_key = key + "[0]", c_key = key + "[1]";
       k.range(t_key, f.table[i][0], 0.0, false, kMaxStateValue, false);
@@ -156,7 +197,7 @@ void check_feed(Checker& k, const Case& c) {
   }
   // A pulse or a table has no steady state to stop at (before the pulse the field is as
   // steady as it will ever be), and the warm start's steady field is that of a constant feed.
-  std::string with = "expected false with species.feed.shape = \"";
+  std::string with = "expected false with " + fk + "shape = \"";
   with.append(to_string(f.shape)).append("\" ");
   const bool transient = f.shape == FeedShape::pulse || f.shape == FeedShape::table;
   k.require(!transient || !c.time.stop_when_steady, "time.stop_when_steady",
@@ -172,6 +213,24 @@ void check_reactions(Checker& k, const Case& c) {
     std::string key = "reaction[";
     key.append(std::to_string(i)).append("].");
     k.range(key + "k", r.k, 0.0, false, kMaxStateValue, false);
+    const bool two = r.law == RateLaw::bimolecular;
+    k.require(r.reactants.size() == (two ? 2u : 1u), key + "reactants",
+              std::string("expected ") + (two ? "two species (A + B -> products)" : "one species") +
+                  " with law = \"" + to_string(r.law) + "\", got " +
+                  std::to_string(r.reactants.size()));
+    if (two && r.reactants.size() == 2)
+      k.require(r.reactants[0] != r.reactants[1], key + "reactants",
+                "expected two different species (for 2 A -> products use law = \"nth_order\" "
+                "with order = 2)");
+    for (std::size_t j = 0; j < r.products.size(); ++j) {
+      const int p = r.products[j];
+      bool clash = false;
+      for (const int q : r.reactants) clash = clash || q == p;
+      for (std::size_t o = 0; o < j; ++o) clash = clash || r.products[o] == p;
+      k.require(!clash, key + "products[" + std::to_string(j) + "]",
+                "expected a species that is neither a reactant nor listed twice, got \"" +
+                    c.species_at(p).name + "\"");
+    }
     // Orders of real rate laws lie in [0, 3]; 5 leaves room and keeps C^n finite in double.
     if (r.law == RateLaw::nth_order) k.range(key + "order", r.order, 0.0, false, 5.0, false);
     if (r.law == RateLaw::michaelis_menten)
@@ -224,6 +283,12 @@ void check_time_output(Checker& k, const Case& c) {
 
 }  // namespace
 
+std::optional<Problem> find_species_problem(const Case& c) {
+  Checker k;
+  check_more_species(k, c);
+  return k.problem;
+}
+
 std::optional<Problem> find_problem(const Case& c) {
   Checker k;
   k.require(valid_name(c.name), "name",
@@ -234,7 +299,8 @@ std::optional<Problem> find_problem(const Case& c) {
                                     : c.name + "\""));
   check_geometry(k, c);
   check_fluid_species(k, c);
-  check_feed(k, c);
+  check_more_species(k, c);
+  for (int s = 0; s < c.species_count(); ++s) check_feed(k, c, s);
   check_reactions(k, c);
   check_time_output(k, c);
   return k.problem;
@@ -272,6 +338,8 @@ const char* to_string(RateLaw r) {
       return "nth_order";
     case RateLaw::michaelis_menten:
       return "michaelis_menten";
+    case RateLaw::bimolecular:
+      return "bimolecular";
   }
   return "?";
 }

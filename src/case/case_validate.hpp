@@ -14,6 +14,9 @@ struct Problem {
 };
 
 // The first problem found, in the order of cases/README.md; nullopt when the case is valid.
+// The rules of the species tables alone (names, count, values): checked before the
+// reactions' species names are resolved against them.
+std::optional<Problem> find_species_problem(const Case& c);
 std::optional<Problem> find_problem(const Case& c);
 
 }  // namespace adrsph::case_detail

@@ -1,12 +1,14 @@
 // `adrsph compare RUN_DIR REF_DIR [--out FILE]`: the paper's metrics (docs/benchmark.md,
 // section 4; issue 4). Relative error along the three probe lines (CSV + PNG, figures 3-5) and of
 // the section averages at x = 25, 50, 100 beside the paper's table 3 (Markdown, also printed).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "adrsph/probes.hpp"
 #include "analysis/compare.hpp"
@@ -27,22 +29,47 @@ void plot_errors(const fs::path& csv, const fs::path& png, const std::string& ti
   run_plot_script("plot_errors.py", {csv.string(), "--out", png.string(), "--title", title});
 }
 
-int run_compare(const CompareOptions& o) {
+// The files of one species: probes.csv and stations.csv for the first, probes_<name>.csv and
+// stations_<name>.csv for the others of a network ("" names the first).
+struct SpeciesFiles {
+  std::string name;
+  std::string probes() const { return name.empty() ? "probes.csv" : "probes_" + name + ".csv"; }
+  std::string stations() const {
+    return name.empty() ? "stations.csv" : "stations_" + name + ".csv";
+  }
+};
+
+// The other species of a network run: RUN_DIR/probes_<name>.csv, sorted by name.
+std::vector<SpeciesFiles> more_species_of(const fs::path& run_dir) {
+  std::vector<SpeciesFiles> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(run_dir, ec)) {
+    const std::string f = e.path().filename().string();
+    if (f.size() > 11 && f.rfind("probes_", 0) == 0 && f.substr(f.size() - 4) == ".csv")
+      out.push_back({f.substr(7, f.size() - 11)});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const SpeciesFiles& a, const SpeciesFiles& b) { return a.name < b.name; });
+  return out;
+}
+
+// One species of the run against the same species of the reference; writes md_file and its
+// .csv and .png beside it.
+int compare_species(const CompareOptions& o, const SpeciesFiles& sp, analysis::RunInfo info,
+                    const fs::path& md_file) {
   const fs::path run_dir = o.run_dir, ref_dir = o.ref_dir;
   ProbeTable run_probes, ref_probes;
   StationTable run_stations, ref_stations;
   try {
-    run_probes = read_probes_csv(run_dir / "probes.csv");
-    run_stations = read_stations_csv(run_dir / "stations.csv");
-    ref_probes = read_probes_csv(ref_dir / "probes.csv");
-    ref_stations = read_stations_csv(ref_dir / "stations.csv");
+    run_probes = read_probes_csv(run_dir / sp.probes());
+    run_stations = read_stations_csv(run_dir / sp.stations());
+    ref_probes = read_probes_csv(ref_dir / sp.probes());
+    ref_stations = read_stations_csv(ref_dir / sp.stations());
   } catch (const std::exception& e) {
-    std::cerr << "adrsph compare: " << e.what() << "\n";
+    std::cerr << "adrsph compare: " << e.what()
+              << (sp.name.empty() ? "" : " (species " + sp.name + " of the run)") << "\n";
     return kExitBadInput;
   }
-  analysis::RunInfo info = analysis::read_run_info(run_dir / "run.json");
-  if (!info.pe) info.pe = analysis::read_run_info(ref_dir / "reference.json").pe;
-
   analysis::LineErrors lines;
   std::vector<analysis::StationError> stations;
   try {
@@ -52,13 +79,13 @@ int run_compare(const CompareOptions& o) {
     std::cerr << "adrsph compare: " << e.what() << "\n";
     return kExitBadInput;
   }
-  const std::string run_name =
+  std::string run_name =
       run_dir.filename().empty() ? run_dir.string() : run_dir.filename().string();
+  if (!sp.name.empty()) run_name += " (species " + sp.name + ")";
   const std::string md = analysis::compare_markdown(run_name, ref_dir.string(), info, stations,
                                                     analysis::summarise(lines));
   std::cout << md;
 
-  const fs::path md_file = o.out.empty() ? run_dir / "compare.md" : fs::path(o.out);
   fs::path csv_file = md_file, png_file = md_file;
   csv_file.replace_extension(".csv");
   png_file.replace_extension(".png");
@@ -78,6 +105,24 @@ int run_compare(const CompareOptions& o) {
   return kExitOk;
 }
 
+int run_compare(const CompareOptions& o) {
+  const fs::path run_dir = o.run_dir, ref_dir = o.ref_dir;
+  analysis::RunInfo info = analysis::read_run_info(run_dir / "run.json");
+  if (!info.pe) info.pe = analysis::read_run_info(ref_dir / "reference.json").pe;
+  const std::vector<SpeciesFiles> more = more_species_of(run_dir);
+  // The paper's table 3 is of one species with first-order kinetics: not for a network.
+  if (!more.empty()) info.pe.reset();
+  const fs::path md_file = o.out.empty() ? run_dir / "compare.md" : fs::path(o.out);
+  if (const int rc = compare_species(o, {}, info, md_file); rc != kExitOk) return rc;
+  for (const SpeciesFiles& sp : more) {
+    fs::path file = md_file;
+    file.replace_filename(md_file.stem().string() + "_" + sp.name + md_file.extension().string());
+    std::cout << "\n";
+    if (const int rc = compare_species(o, sp, info, file); rc != kExitOk) return rc;
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 Command register_compare(CLI::App& app) {
@@ -87,7 +132,9 @@ Command register_compare(CLI::App& app) {
       "probe lines "
       "y = 0, +2.5, -2.5 and of the section average (the paper's figures 3-5), and of the "
       "section averages at x = 25, 50, 100 beside the paper's table 3 (row chosen by Pe and "
-      "scheme from RUN_DIR/run.json). Reads probes.csv and stations.csv of both. Writes FILE "
+      "scheme from RUN_DIR/run.json). Reads probes.csv and stations.csv of both, and for a "
+      "network run each species' probes_<name>.csv and stations_<name>.csv (written beside "
+      "FILE as FILE_<name>.md, .csv, .png). Writes FILE "
       "(Markdown, default RUN_DIR/compare.md), FILE with .csv (x_mm,err_y0,err_y+2.5,"
       "err_y-2.5,err_mean) and FILE with .png (tools/plot_errors.py, when a python3 with "
       "matplotlib is found; $ADRSPH_PYTHON overrides).\n"

@@ -14,6 +14,7 @@
 #include "adrsph/probes.hpp"
 #include "adrsph/reference.hpp"
 #include "cli/commands.hpp"
+#include "cli/reference_network.hpp"
 #include "cli/reference_transient.hpp"
 
 namespace adrsph::cli {
@@ -132,6 +133,16 @@ int run_reference(const ReferenceOptions& o) {
   const std::filesystem::path dir = o.out_dir.empty()
                                         ? std::filesystem::path("runs") / ("reference_" + c.name)
                                         : std::filesystem::path(o.out_dir);
+  if (c.species_count() > 1) {
+    NetworkRequest q;
+    q.nx = o.nx_given ? o.nx : kNetworkNx;
+    q.ny = o.ny_given ? o.ny : kNetworkNy;
+    q.convergence = o.convergence;
+    q.out_dir = dir;
+    q.solver.solver = o.solver;
+    q.solver.limiter = o.limiter;
+    return run_network_reference(q, c);
+  }
   ref::Problem p;
   try {
     p = ref::problem_from_case(c);
@@ -179,10 +190,15 @@ Command register_reference(CLI::App& app) {
       "reference",
       "Steady finite-volume reference solution of a case (docs/benchmark.md, section 5): "
       "u(y) dC/dx = "
-      "D lap C - k C on a structured grid, van Leer TVD advection, Eigen SparseLU. Writes "
-      "DIR/probes.csv, stations.csv, reference.h5, reference.json. DIR defaults to "
-      "runs/reference_<case name>.\n"
-      "With --transient: dC/dt + u dC/dx = D lap C - k C from species.c_init with the inlet "
+      "D lap C - R(C) on a structured grid (R: species.k and the [[reaction]] tables), van "
+      "Leer TVD advection, Eigen SparseLU. Writes DIR/probes.csv, stations.csv, reference.h5, "
+      "reference.json. DIR defaults to runs/reference_<case name>.\n"
+      "A case of several [[species]] is solved as a network (Newton on the coupled species, "
+      "default grid 800x80) and writes probes_<name>.csv and stations_<name>.csv for every "
+      "species after the first; --convergence then also solves nx/2 x ny/2 and prints the "
+      "change of each station.\n"
+      "With --transient (one species): dC/dt + u dC/dx = D lap C - R(C) from species.c_init "
+      "with the inlet "
       "[species.feed] to time.t_end (BDF2), writing the outlet series DIR/outlet.csv every "
       "output.outlet_interval (which must be > 0), DIR/case.toml and DIR/run.json, which "
       "`adrsph rtd DIR` reads like a run; DIR defaults to runs/reference_transient_<case "

@@ -80,8 +80,16 @@ std::vector<std::string> write_outputs(const fs::path& dir, const Case& c, const
     write_outlet_csv(dir / "outlet.csv", r.outlet);
     files.push_back("outlet.csv");
   }
+  for (const RunResult::SpeciesProbes& sp : r.more_species) {
+    write_probes_csv(dir / ("probes_" + sp.name + ".csv"), sp.probes);
+    write_stations_csv(dir / ("stations_" + sp.name + ".csv"), sp.stations);
+    files.push_back("probes_" + sp.name + ".csv");
+    files.push_back("stations_" + sp.name + ".csv");
+  }
   if (!frames.empty()) {
-    write_fields_xdmf(dir / "fields.xmf", "fields.h5", frames);
+    std::vector<std::string> more_c;
+    for (const Case::Species& sp : c.more_species) more_c.push_back("c_" + sp.name);
+    write_fields_xdmf(dir / "fields.xmf", "fields.h5", frames, more_c);
     files.push_back("fields.h5");
     files.push_back("fields.xmf");
   }

@@ -28,6 +28,14 @@ void print_phases(std::ostream& os, const RunResult& r) {
   }
 }
 
+// "A (D = 10), B (D = 10), ...": the species of a network.
+std::string species_list(const Case& c) {
+  std::string out;
+  for (int s = 0; s < c.species_count(); ++s)
+    out += (s ? ", " : "") + c.species_at(s).name + " (D = " + fmt("%g", c.species_at(s).D) + ")";
+  return out;
+}
+
 }  // namespace
 
 void print_summary(std::ostream& os, const Case& c, const RunResult& r, const SummaryInfo& s) {
@@ -37,6 +45,9 @@ void print_summary(std::ostream& os, const Case& c, const RunResult& r, const Su
      << fmt("%g", c.peclet()) << " (D = " << fmt("%g", c.species.D)
      << " mm^2/s, k = " << fmt("%g", c.species.k) << " 1/s), dx " << fmt("%g", c.particles.dx)
      << " mm\n"
+     << (c.more_species.empty()
+             ? std::string()
+             : "  species: " + species_list(c) + " (D, k above: " + c.species.name + ")\n")
      << (c.reactions.empty() ? std::string()
                              : "  reactions: " + std::to_string(c.reactions.size()) +
                                    " [[reaction]] table(s) besides species.k\n")
@@ -56,15 +67,18 @@ void print_summary(std::ostream& os, const Case& c, const RunResult& r, const Su
        << fmt("%.1f", r.mean_neighbours) << " entries per particle\n";
   if (r.lost_particles > 0) os << "  lost particles: " << r.lost_particles << "\n";
   print_phases(os, r);
-  if (!r.stations.x_mm.empty()) {
-    os << "  section average C:";
-    for (std::size_t i = 0; i < r.stations.x_mm.size() && i < r.stations.c_mean.size(); ++i)
-      os << "  x = " << fmt("%g", r.stations.x_mm[i]) << ": " << fmt("%.5f", r.stations.c_mean[i]);
+  auto stations = [&](const std::string& label, const StationTable& st) {
+    if (st.x_mm.empty()) return;
+    os << "  section average " << label << ":";
+    for (std::size_t i = 0; i < st.x_mm.size() && i < st.c_mean.size(); ++i)
+      os << "  x = " << fmt("%g", st.x_mm[i]) << ": " << fmt("%.5f", st.c_mean[i]);
     os << " mol/m^3";
     if (r.average_window > 0)
       os << " (averaged over the last " << fmt("%g", r.average_window) << " s)";
     os << "\n";
-  }
+  };
+  stations(c.more_species.empty() ? std::string("C") : c.species.name, r.stations);
+  for (const RunResult::SpeciesProbes& sp : r.more_species) stations(sp.name, sp.stations);
   os << "  status: " << r.status;
   if (!r.message.empty()) os << " (" << r.message << ")";
   os << "\n  files in " << s.out_dir.string() << "/:";

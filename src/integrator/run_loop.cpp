@@ -28,6 +28,21 @@ StationTable stations_from(const ProbeTable& p, double length) {
   return s;
 }
 
+std::vector<ProbeTable> split_species(const ProbeTable& all, int count) {
+  const std::size_t n = all.x_mm.size() / static_cast<std::size_t>(count);
+  std::vector<ProbeTable> parts(static_cast<std::size_t>(count));
+  for (std::size_t s = 0; s < parts.size(); ++s) {
+    const auto first = static_cast<std::ptrdiff_t>(s * n),
+               last = first + static_cast<std::ptrdiff_t>(n);
+    auto part = [&](const std::vector<double>& v) {
+      return std::vector<double>(v.begin() + first, v.begin() + last);
+    };
+    parts[s] = {part(all.x_mm), part(all.c_y0), part(all.c_yp25), part(all.c_ym25),
+                part(all.c_mean)};
+  }
+  return parts;
+}
+
 double peak_rss_bytes() {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
@@ -84,6 +99,18 @@ void RunLoop::sample() {
   ScopedPhase timer(solver_.timers(), Phase::probes);
   last_probes_ =
       solver_.sampler().probe_lines(c_.geometry.length, c_.geometry.half_width, n_section_);
+  // A network's other species follow in the same table (split_species): the steady test and
+  // the average window then watch every species.
+  for (int sp = 1; sp < solver_.species_count(); ++sp) {
+    const ProbeTable more =
+        solver_.sampler(sp).probe_lines(c_.geometry.length, c_.geometry.half_width, n_section_);
+    for (auto [to, from] : {std::pair{&last_probes_.x_mm, &more.x_mm},
+                            {&last_probes_.c_y0, &more.c_y0},
+                            {&last_probes_.c_yp25, &more.c_yp25},
+                            {&last_probes_.c_ym25, &more.c_ym25},
+                            {&last_probes_.c_mean, &more.c_mean}})
+      to->insert(to->end(), from->begin(), from->end());
+  }
   if (mode_ == Mode::run && c_.time.average_window > 0) {
     window_.emplace_back(solver_.time(), last_probes_);
     while (window_.front().first < solver_.time() - c_.time.average_window - eps_t_)

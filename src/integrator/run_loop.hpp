@@ -29,6 +29,9 @@ class SphSolver;
 int section_samples(const Case& c);
 // The section averages at the stations (station_x_positions) from the probe-line samples.
 StationTable stations_from(const ProbeTable& p, double length);
+// The probe table of a network (RunLoop::sample: the species one after the other) split into
+// one table per species.
+std::vector<ProbeTable> split_species(const ProbeTable& all, int count);
 // Peak resident memory of the process so far [bytes].
 double peak_rss_bytes();
 

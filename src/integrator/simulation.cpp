@@ -164,6 +164,14 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
     loop.sample();
     result.probes = loop.last_probes();
   }
+  if (c.species_count() > 1) {
+    const std::vector<ProbeTable> parts = split_species(result.probes, c.species_count());
+    result.probes = parts[0];
+    for (int sp = 1; sp < c.species_count(); ++sp)
+      result.more_species.push_back(
+          {c.species_at(sp).name, parts[static_cast<std::size_t>(sp)],
+           stations_from(parts[static_cast<std::size_t>(sp)], c.geometry.length)});
+  }
   result.stations = stations_from(result.probes, c.geometry.length);
   loop.emit_fields();
 

@@ -1,5 +1,6 @@
 #include "integrator/sph_solver.hpp"
 
+#include <array>
 #include <cmath>
 #include <span>
 #include <stdexcept>
@@ -24,6 +25,11 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
   phys_.four_nu = 4.0 * c.fluid.nu;
   phys_.delta_h_c0_2 = 2.0 * c.modern.delta * h * c.c0();
   phys_.diffusivity = c.species.D;
+  phys_.max_diffusivity = c.species.D;
+  for (int e = 0; e + 1 < c.species_count(); ++e) {
+    phys_.more_diffusivity[static_cast<std::size_t>(e)] = c.more_species[e].D;
+    phys_.max_diffusivity = std::max(phys_.max_diffusivity, c.more_species[e].D);
+  }
   phys_.eos.rho0 = c.fluid.rho0;
   phys_.eos.c0 = c.c0();
   phys_.eos.gamma = c.fluid.gamma;
@@ -41,14 +47,16 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
                    scene_.ymax() + cutoff_, cutoff_);
 
   const bool split = limits_.diffusion_stages > 1;
+  const bool net = c.species_count() > 1;
   if (c.flow == Flow::prescribed)
-    bind<PrescribedFlow, false>(split);
+    net ? bind<PrescribedFlow, false, true>(split) : bind<PrescribedFlow, false, false>(split);
   else if (c.scheme == Scheme::conventional)
-    bind<ConventionalScheme, false>(split);
-  else if (c.species.ale)
-    bind<ModernScheme, true>(split);
+    net ? bind<ConventionalScheme, false, true>(split)
+        : bind<ConventionalScheme, false, false>(split);
+  else if (c.species.ale)  // one species only (case_validate.cpp)
+    bind<ModernScheme, true, false>(split);
   else
-    bind<ModernScheme, false>(split);
+    net ? bind<ModernScheme, false, true>(split) : bind<ModernScheme, false, false>(split);
 
   scene_.initialise(store_);
   if (!initial_c.empty()) {
@@ -59,7 +67,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
     for (std::size_t i = 0; i < store_.size(); ++i) store_.c[i] = initial_c[i];
   }
   for (std::size_t i = 0; i < store_.size(); ++i) store_.p[i] = phys_.eos.p_background;
-  if (feed_varies(c.species)) apply_feed(0.0);
+  apply_feed(0.0);  // (only species whose feed varies)
   rebuild();
 }
 
@@ -70,12 +78,14 @@ double SphSolver::species_inventory() const {
   return total;
 }
 
-template <class S, bool Ale>
+template <class S, bool Ale, bool Net>
 void SphSolver::bind(bool split) {
-  step_fn_ = split ? &SphSolver::step_impl<S, Ale, true> : &SphSolver::step_impl<S, Ale, false>;
-  eval_fn_ = split ? &SphSolver::evaluate_at_rest<S, Ale, true>
-                   : &SphSolver::evaluate_at_rest<S, Ale, false>;
-  store_.set_needs({S::momentum, S::continuity, S::shifting});  // the arrays S uses, no more
+  step_fn_ =
+      split ? &SphSolver::step_impl<S, Ale, true, Net> : &SphSolver::step_impl<S, Ale, false, Net>;
+  eval_fn_ = split ? &SphSolver::evaluate_at_rest<S, Ale, true, Net>
+                   : &SphSolver::evaluate_at_rest<S, Ale, false, Net>;
+  // The arrays S uses, and one set per species of the network; no more.
+  store_.set_needs({S::momentum, S::continuity, S::shifting, case_.species_count() - 1});
 }
 
 std::size_t SphSolver::fluid_count() const {
@@ -144,7 +154,7 @@ void SphSolver::next_displacement(double a, bool from_start) {
   }
 }
 
-template <class S, bool Ale, bool Split>
+template <class S, bool Ale, bool Split, bool Net>
 void SphSolver::evaluate_impl(double a_next, bool from_start) {
   PassContext ctx{kernel_, list_, phys_};
   if constexpr (S::summation_density) {
@@ -163,13 +173,13 @@ void SphSolver::evaluate_impl(double a_next, bool from_start) {
     extrapolate_to_boundaries(store_, ctx);
   }
   ScopedPhase timer(timers_, Phase::forces);
-  interaction_pass<S, Ale, !Split>(store_, ctx);
+  interaction_pass<S, Ale, !Split, Net>(store_, ctx);
 }
 
 // Explicit midpoint: u* = u0 + a f(u), with a = dt/2 from the start state, then a = dt.
 // Stage 1 (Save) also keeps the start state u0 of the non-wall particles: one pass over the
 // arrays instead of a separate copy (walls are never advanced, so they need no u0).
-template <class S, bool Save>
+template <class S, bool Save, bool Net>
 void SphSolver::advance(double a) {
   ScopedPhase timer(timers_, Phase::integration);
   ParticleStore& s = store_;
@@ -198,11 +208,14 @@ void SphSolver::advance(double a) {
     if (k == kFluidByte) {
       if constexpr (S::continuity) s.rho[i] = s.rho_start[i] + a * s.drho[i];
       s.c[i] = s.c_start[i] + a * s.dc[i];
+      if constexpr (Net)
+        for (int e = 0; e < s.needs().more_species; ++e)
+          s.c_more[e][i] = s.c_more_start[e][i] + a * s.dc_more[e][i];
     }
   }
 }
 
-template <class S, bool Ale, bool Split>
+template <class S, bool Ale, bool Split, bool Net>
 bool SphSolver::step_impl(double dt) {
   if constexpr (S::shifting) {
     phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
@@ -210,18 +223,18 @@ bool SphSolver::step_impl(double dt) {
   }
   // The inlet value of a feed that varies, at the middle of the step (second order in time
   // for a smooth feed); a constant feed is the buffer's initial value.
-  if (feed_varies(case_.species)) apply_feed(t_ + 0.5 * dt);
+  apply_feed(t_ + 0.5 * dt);
   // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x_start = x then),
   // stage 2 at x_start + dt u*.
-  evaluate_impl<S, Ale, Split>(0.5 * dt, false);
+  evaluate_impl<S, Ale, Split, Net>(0.5 * dt, false);
   density_predicted_ = S::summation_density && predict_density_;
-  advance<S, true>(0.5 * dt);
-  evaluate_impl<S, Ale, Split>(dt, true);
+  advance<S, true, Net>(0.5 * dt);
+  evaluate_impl<S, Ale, Split, Net>(dt, true);
   density_predicted_ = S::summation_density && predict_density_;
   double exchange = 0.0;         // with the buffers, for the ledger once the step is kept
   if (!Split && track_balance_)  // (sub-cycled diffusion accounts for its own exchange)
     exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
-  advance<S, false>(dt);
+  advance<S, false, Net>(dt);
   if constexpr (Split) exchange += diffuse_species(dt);
   // Guards before anything outside the particle state changes: a failed step restores the
   // start state and leaves kinds, inflow rows, ledger and time as they were.
@@ -244,6 +257,7 @@ double SphSolver::diffuse_species(double dt) {
 }
 
 void SphSolver::react(double dt) {
+  if (case_.species_count() > 1) return react_network(dt);
   // A case without reaction skips the pass (a factor of 1 changes nothing).
   const bool uniform = case_.species.k > 0.0;
   if (!uniform && case_.reactions.empty()) return;
@@ -275,14 +289,43 @@ void SphSolver::react(double dt) {
   ledger_.reaction += consumed;
 }
 
-void SphSolver::apply_feed(double t) {
-  ScopedPhase timer(timers_, Phase::boundaries);
-  const double c_in = inlet_concentration(case_.species, t);
-  scene_.set_inlet_concentration(c_in);
+void SphSolver::react_network(double dt) {
+  if (case_.reactions.empty() && !(case_.species.k > 0.0)) return;
+  ScopedPhase timer(timers_, Phase::integration);
   const std::size_t n = store_.size();
+  const int count = case_.species_count();
+  const double mass = store_.mass;
+  double consumed = 0.0;  // of the first species (the ledger's): net, what it also gains
+  // Each particle is a batch reactor over the step (species/reaction_kinetics.hpp), split
+  // from the transport as react() is.
+#pragma omp parallel for schedule(static) reduction(+ : consumed)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (store_.kind[i] != kFluidByte) continue;
+    std::array<double, Case::kMaxSpecies> conc{};
+    conc[0] = store_.c[i];
+    for (int e = 1; e < count; ++e) conc[e] = store_.c_more[e - 1][i];
+    adrsph::react_network(case_, store_.x[i], store_.y[i],
+                          std::span(conc).first(static_cast<std::size_t>(count)), dt);
+    consumed += mass / store_.rho[i] * (store_.c[i] - conc[0]);
+    store_.c[i] = conc[0];
+    for (int e = 1; e < count; ++e) store_.c_more[e - 1][i] = conc[e];
+  }
+  ledger_.reaction += consumed;
+}
+
+void SphSolver::apply_feed(double t) {
+  for (int sp = 0; sp < case_.species_count(); ++sp) {
+    const Case::Species& species = case_.species_at(sp);
+    if (!feed_varies(species)) continue;
+    ScopedPhase timer(timers_, Phase::boundaries);
+    const double c_in = inlet_concentration(species, t);
+    scene_.set_inlet_concentration(sp, c_in);
+    std::vector<double>& c = sp == 0 ? store_.c : store_.c_more[sp - 1];
+    const std::size_t n = store_.size();
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    if (store_.kind[i] == kInletByte) store_.c[i] = c_in;
+    for (std::size_t i = 0; i < n; ++i)
+      if (store_.kind[i] == kInletByte) c[i] = c_in;
+  }
 }
 
 void SphSolver::update_buffers(double dt) {
@@ -315,6 +358,8 @@ FieldFrame SphSolver::frame(std::vector<double>& pressure_pa) const {
   f.p = pressure_pa;
   f.c = std::span(store_.c).first(n);
   f.kind = std::span(store_.kind).first(n);
+  for (int e = 0; e < store_.needs().more_species; ++e)
+    f.more_c.emplace_back("c_" + case_.more_species[e].name, std::span(store_.c_more[e]).first(n));
   return f;
 }
 

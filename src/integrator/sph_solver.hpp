@@ -96,11 +96,14 @@ class SphSolver {
   // Probe sampling on the grid of the last sort, read-only: a particle within the support of
   // a probe now was within support + moved_abs_ at the sort, so the search covers that many
   // cells of size cutoff_ around it.
-  ProbeSampler sampler() const {
+  // `species`: which species it samples (Case::species_at order).
+  ProbeSampler sampler(int species = 0) const {
     const int rings = std::max(
         1, static_cast<int>(std::ceil((kernel_.support + moved_abs_) / cutoff_ * (1.0 + 1e-12))));
-    return ProbeSampler{store_, grid_, kernel_, rings};
+    const double* c = species == 0 ? store_.c.data() : store_.c_more[species - 1].data();
+    return ProbeSampler{store_, grid_, kernel_, rings, c};
   }
+  int species_count() const { return 1 + store_.needs().more_species; }
   FieldFrame frame(std::vector<double>& pressure_pa) const;
   // Recompute the derived fields (density, pressure, volumes) and rates of the current state
   // without advancing: used by tests and benchmarks.
@@ -120,28 +123,30 @@ class SphSolver {
   void restore(const SolverSnapshot& s);
 
  private:
-  template <class S, bool Ale, bool Split>
+  // Net: a network of several species (interaction_pass.hpp, Network).
+  template <class S, bool Ale, bool Split, bool Net>
   bool step_impl(double dt);
   // a_next: the coming stage's step (prediction at x_start + a_next u; before the first stage,
   // from_start = false: at x + a_next u); a_next < 0: no prediction wanted.
-  template <class S, bool Ale, bool Split>
+  template <class S, bool Ale, bool Split, bool Net>
   void evaluate_impl(double a_next, bool from_start);
-  template <class S, bool Ale, bool Split>
+  template <class S, bool Ale, bool Split, bool Net>
   void evaluate_at_rest() {  // evaluate() (a prediction for the current positions, unused)
-    evaluate_impl<S, Ale, Split>(-1.0, 0.0);
+    evaluate_impl<S, Ale, Split, Net>(-1.0, 0.0);
   }
   // The displacement of the coming stage, next_dx_ = base + a u - x (base: x_start, or x when
   // a_base < 0, before the first stage), as advance() will apply it.
   void next_displacement(double a, bool from_start);
-  template <class S, bool Ale>
+  template <class S, bool Ale, bool Net>
   void bind(bool split);
   // state = saved state + a * rates; Save: first stage, also saves the start state
-  template <class S, bool Save>
+  template <class S, bool Save, bool Net>
   void advance(double a);
   bool check_state(double dt);
   // The phases of a step after the transport (step_impl reads as this list).
   double diffuse_species(double dt);  // sub-cycled diffusion; returns the buffer exchange
   void react(double dt);
+  void react_network(double dt);   // react() for several species
   void update_buffers(double dt);  // inflow rows, kinds, crossings
   // A feed that varies in time (species/inlet_feed.hpp): the inflow buffer and the rows fed
   // from now on carry the inlet value at time t.

@@ -1,6 +1,7 @@
 // The guards of SphSolver::step: after every step, the state is checked (non-finite values,
 // speed, density, concentration band; docs/robustness.md), and a failed step is undone and
 // described (what, when, where). Particles lost at a re-sort are reported here too.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -49,7 +50,19 @@ bool SphSolver::check_state(double dt) {
   double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0, c_dev = 0.0;
   // Diffusion and reaction keep C within [0, c_max] (maximum principle); the dilatation term
   // may move it slightly. A species step beyond its stability limit leaves this band fast.
-  const double c_max = std::max(feed_max(case_.species), case_.species.c_init);
+  // A network's species share one band: none can exceed the moles all of them bring in.
+  double c_max = 0.0;
+  for (int sp = 0; sp < case_.species_count(); ++sp)
+    c_max += std::max(feed_max(case_.species_at(sp)), case_.species_at(sp).c_init);
+  const int more = s.needs().more_species;
+  // The largest distance of particle i's C (any species) outside [0, c_max]; NaN if not finite.
+  auto c_outside = [&](std::size_t i) {
+    double d = std::max(s.c[i] - c_max, -s.c[i]);
+    for (int e = 0; e < more; ++e) d = std::max({d, s.c_more[e][i] - c_max, -s.c_more[e][i]});
+    for (int e = 0; e < more; ++e)
+      if (!std::isfinite(s.c_more[e][i])) return std::nan("");
+    return d;
+  };
   const double rho0 = case_.fluid.rho0;
   const bool shifting = s.needs().shifting;  // sx, sy exist only for a shifting scheme
 #pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max, c_dev) reduction(+ : bad)
@@ -57,12 +70,13 @@ bool SphSolver::check_state(double dt) {
     if (s.kind[i] == kWallByte) continue;
     const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
     const double t2 = transport_speed2(s, i, shifting);
-    const bool finite = finite_state(s, i, t2);
+    const double c_off = more > 0 ? c_outside(i) : std::max(s.c[i] - c_max, -s.c[i]);
+    const bool finite = finite_state(s, i, t2) && std::isfinite(c_off);
     bad += finite ? 0 : 1;
     vmax2 = std::max(vmax2, finite ? v2 : 0.0);
     tmax2 = std::max(tmax2, finite ? t2 : 0.0);
     drho_max = std::max(drho_max, finite ? std::fabs(s.rho[i] / rho0 - 1.0) : 0.0);
-    if (finite) c_dev = std::max(c_dev, std::max(s.c[i] - c_max, -s.c[i]));
+    if (finite) c_dev = std::max(c_dev, c_off);
   }
   const double vmax = std::sqrt(vmax2);
   FailureKind kind = FailureKind::none;
@@ -88,7 +102,9 @@ bool SphSolver::check_state(double dt) {
     double value = 0.0;
     switch (kind) {
       case FailureKind::non_finite:
-        value = finite_state(s, i, transport_speed2(s, i, shifting)) ? 0.0 : 1.0;
+        value = finite_state(s, i, transport_speed2(s, i, shifting)) && std::isfinite(c_outside(i))
+                    ? 0.0
+                    : 1.0;
         break;
       case FailureKind::speed:
         value = std::sqrt(v2);
@@ -97,7 +113,7 @@ bool SphSolver::check_state(double dt) {
         value = std::fabs(s.rho[i] / rho0 - 1.0);
         break;
       default:
-        value = std::max(s.c[i] - c_max, -s.c[i]);
+        value = c_outside(i);
         break;
     }
     if (value > worst_value) {

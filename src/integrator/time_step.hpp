@@ -2,7 +2,7 @@
 //   acoustic  dt <= cfl h / (c0 + u_max)       (WCSPH flow)
 //   advective dt <= cfl h / u_max              (prescribed flow: no sound waves)
 //   viscous   dt <= viscous_number h^2 / nu    (WCSPH flow)
-//   diffusion dt <= diffusion_number h^2 / D
+//   diffusion dt <= diffusion_number h^2 / D  (the largest D of the species)
 // or a fixed step: time.dt, or time.dt_factor times the smallest of these.
 #pragma once
 
@@ -28,7 +28,9 @@ inline TimeStepLimits time_step_limits(const Case& c) {
   } else {
     l.advective = c.time.cfl * h / c.u_max();
   }
-  if (c.species.D > 0) l.diffusion = c.time.diffusion_number * h * h / c.species.D;
+  double D = 0.0;  // the fastest-diffusing species sets the limit
+  for (int s = 0; s < c.species_count(); ++s) D = std::max(D, c.species_at(s).D);
+  if (D > 0) l.diffusion = c.time.diffusion_number * h * h / D;
   double best = std::numeric_limits<double>::infinity();
   auto consider = [&](double v, const char* name) {
     if (v > 0 && v < best) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <system_error>
 #include <type_traits>
 #include <utility>
@@ -133,9 +134,20 @@ SolverSnapshot read_solver(hid_t root, const std::string& file) {
   const char* grp = "solver";
   SolverSnapshot s;
   // The particle arrays the store's field list names as state (checkpoint.hpp).
+  // Its list with every species array: those of species a run does not have are not in the
+  // file (a case of one species writes none).
   ParticleStore layout;  // empty: only its field list is read
+  ParticleStore::Needs all;
+  all.more_species = ParticleStore::kMaxMore;
+  layout.set_needs(all);
+  ParticleStore empty;
   ParticleStore::for_each_field(layout, [&](auto& a, ParticleStore::Role role, const char* name) {
     if (role != ParticleStore::Role::state) return;
+    bool in_default = false;  // the arrays of every run must be there; the others may be
+    ParticleStore::for_each_field(empty, [&](auto&, ParticleStore::Role, const char* other) {
+      in_default = in_default || std::string(other) == name;
+    });
+    if (!in_default && H5Lexists(id, name, H5P_DEFAULT) <= 0) return;
     using T = typename std::decay_t<decltype(a)>::value_type;
     s.particles.of<T>().emplace_back(name, get<T>(id, grp, name, file));
   });

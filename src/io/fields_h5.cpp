@@ -79,6 +79,13 @@ void FieldsWriter::write(const FieldFrame& f) {
   for (std::size_t i = 0; i < std::size(arrays); ++i)
     h5::write_dataset<double>(group.get(), kDoubleFields[i], arrays[i], file);
   h5::write_dataset<std::uint8_t>(group.get(), "kind", f.kind, file);
+  for (const auto& [more_name, values] : f.more_c) {
+    if (values.size() != n)
+      throw std::runtime_error(file + ": frame at t = " + std::to_string(f.t) + ": array " +
+                               more_name + " has " + std::to_string(values.size()) +
+                               " values, x has " + std::to_string(n));
+    h5::write_dataset<double>(group.get(), more_name, values, file);
+  }
   h5::check(H5Fflush(id_, H5F_SCOPE_GLOBAL), file, "flush");
   frames_.push_back({f.t, f.step, n});
 }

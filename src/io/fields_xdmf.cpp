@@ -17,7 +17,11 @@ void data_item(std::ostream& os, std::size_t n, const char* type, int precision,
 }  // namespace
 
 void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
-                       const std::vector<FieldFrameInfo>& frames) {
+                       const std::vector<FieldFrameInfo>& frames,
+                       const std::vector<std::string>& more_c) {
+  std::vector<std::string> attributes = {"vx", "vy", "rho", "p", "c"};
+  attributes.insert(attributes.end(), more_c.begin(), more_c.end());
+  attributes.push_back("kind");
   std::ostringstream os;
   os.precision(17);
   os << "<?xml version=\"1.0\" ?>\n"
@@ -36,8 +40,9 @@ void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_n
     data_item(os, f.n, "Float", 8, h5_name, frame, "x");
     data_item(os, f.n, "Float", 8, h5_name, frame, "y");
     os << "        </Geometry>\n";
-    for (const char* name : {"vx", "vy", "rho", "p", "c", "kind"}) {
-      const bool is_kind = std::string(name) == "kind";
+    for (const std::string& attribute : attributes) {
+      const char* name = attribute.c_str();
+      const bool is_kind = attribute == "kind";
       os << "        <Attribute Name=\"" << name
          << "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
       data_item(os, f.n, is_kind ? "UChar" : "Float", is_kind ? 1 : 8, h5_name, frame, name);

@@ -41,11 +41,23 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   for (const Reaction& r : c.reactions) {
     Json zones = Json::array();
     for (const Reaction::Zone& z : r.zones) zones.push_back({z.x0, z.x1, z.y0, z.y1, z.factor});
+    Json reactants = Json::array(), products = Json::array();
+    for (const int s : r.reactants) reactants.push_back(c.species_at(s).name);
+    for (const int s : r.products) products.push_back(c.species_at(s).name);
     j["reactions"].push_back({{"law", to_string(r.law)},
                               {"k", r.k},
                               {"order", r.order},
                               {"km", r.km},
-                              {"zones", zones}});
+                              {"zones", zones},
+                              {"reactants", reactants},
+                              {"products", products}});
+  }
+  // Every species (the first is the one of D, k, probes.csv and stations.csv).
+  j["species"] = Json::array();
+  for (int s = 0; s < c.species_count(); ++s) {
+    const Case::Species& sp = c.species_at(s);
+    j["species"].push_back(
+        {{"name", sp.name}, {"D", sp.D}, {"c_in", sp.c_in}, {"c_init", sp.c_init}});
   }
   j["dx"] = c.particles.dx;
   j["particles"] = r.n_particles;
@@ -90,6 +102,17 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   for (std::size_t i = 0; i < r.stations.x_mm.size() && i < r.stations.c_mean.size(); ++i)
     stations[x_key(r.stations.x_mm[i])] = number(r.stations.c_mean[i]);
   j["stations"] = stations;
+  // The section averages at the stations of the other species of a network, by name.
+  if (!r.more_species.empty()) {
+    Json more = Json::object();
+    for (const RunResult::SpeciesProbes& sp : r.more_species) {
+      Json st = Json::object();
+      for (std::size_t i = 0; i < sp.stations.x_mm.size(); ++i)
+        st[x_key(sp.stations.x_mm[i])] = number(sp.stations.c_mean[i]);
+      more[sp.name] = st;
+    }
+    j["species_stations"] = more;
+  }
   j["field_frames"] = ctx.field_frames;
   j["overrides"] = ctx.overrides;
   // Wall times mean little without the machine's load: a busy machine slows a run.

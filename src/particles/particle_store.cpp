@@ -47,6 +47,8 @@ void ParticleStore::set_needs(Needs n) {
   if (!n.momentum) release(ax), release(ay), release(vx_start), release(vy_start);
   if (!n.continuity) release(drho), release(rho_start);
   if (!n.shifting) release(sx), release(sy);
+  for (int e = n.more_species; e < kMaxMore; ++e)
+    release(c_more[e]), release(dc_more[e]), release(c_more_start[e]);
   needs_ = n;
   const std::size_t cap = capacity();
   reserve(cap);
@@ -63,9 +65,11 @@ void ParticleStore::reset_padding() {
 }
 
 void ParticleStore::push_back(double px, double py, double pvx, double pvy, double prho, double pc,
-                              Kind k) {
+                              Kind k, std::span<const double> pc_more) {
   const std::size_t i = n_;
   resize(n_ + 1);
+  for (int e = 0; e < needs_.more_species; ++e)
+    c_more[e][i] = static_cast<std::size_t>(e) < pc_more.size() ? pc_more[e] : 0.0;
   x[i] = px;
   y[i] = py;
   vx[i] = pvx;

@@ -3,10 +3,12 @@
 // zero volume, so neighbour lists padded with its index contribute nothing.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "adrsph/case.hpp"
 #include "adrsph/simulation.hpp"
 
 namespace adrsph {
@@ -35,6 +37,11 @@ struct ParticleStore {
   std::vector<float> sx, sy;  // shifting velocity du (modern scheme), eq. (10)
   // State at the start of the step (explicit midpoint needs it), double like the state.
   std::vector<double> x_start, y_start, vx_start, vy_start, rho_start, c_start;
+  // The second and later species of a network (Case::more_species), one array each, like c,
+  // dc and c_start. Needs::more_species of them are in use; the others stay empty.
+  static constexpr int kMaxMore = Case::kMaxSpecies - 1;
+  std::array<std::vector<double>, kMaxMore> c_more, c_more_start;
+  std::array<std::vector<float>, kMaxMore> dc_more;
 
   double mass = 0.0;  // every particle carries m = rho0 dx^2 (per unit depth)
 
@@ -44,6 +51,7 @@ struct ParticleStore {
     bool momentum = true;    // ax, ay and the start-of-step velocity
     bool continuity = true;  // drho and the start-of-step density
     bool shifting = true;    // sx, sy
+    int more_species = 0;    // c_more, dc_more and c_more_start in use
   };
   void set_needs(Needs n);
   const Needs& needs() const { return needs_; }
@@ -60,7 +68,9 @@ struct ParticleStore {
   std::size_t capacity() const { return x.capacity() == 0 ? 0 : x.capacity() - 1; }
   // Heap bytes held by the arrays (capacity, scratch included).
   std::size_t bytes() const;
-  void push_back(double x, double y, double vx, double vy, double rho, double c, Kind k);
+  // `c_more`: the values of the other species (Needs::more_species of them; none: 0).
+  void push_back(double x, double y, double vx, double vy, double rho, double c, Kind k,
+                 std::span<const double> c_more = {});
   // Reorder the real particles: new index i holds old particle order[i]. order.size() may be
   // smaller than size(): particles not listed are removed.
   void permute(std::span<const std::uint32_t> order);
@@ -88,11 +98,15 @@ struct ParticleStore {
     visit(s.x, state, "x"), visit(s.y, state, "y"), visit(s.vx, state, "vx");
     visit(s.vy, state, "vy"), visit(s.rho, state, "rho"), visit(s.c, state, "c");
     visit(s.kind, state, "kind");
+    static constexpr std::array<const char*, kMaxMore> more_c = {"c_1", "c_2", "c_3"};
+    static constexpr std::array<const char*, kMaxMore> more_dc = {"dc_1", "dc_2", "dc_3"};
+    for (int e = 0; e < s.needs_.more_species; ++e) visit(s.c_more[e], state, more_c[e]);
     // p and V are recomputed every evaluation but read before that by particles that have
     // just entered the fluid: kept.
     visit(s.p, state, "p"), visit(s.vol, state, "vol");
     visit(s.diffusion_mask, derived, "diffusion_mask"), visit(s.fluid_side, derived, "fluid_side");
     visit(s.dc, per_step, "dc");
+    for (int e = 0; e < s.needs_.more_species; ++e) visit(s.dc_more[e], per_step, more_dc[e]);
     if (s.needs_.momentum) visit(s.ax, per_step, "ax"), visit(s.ay, per_step, "ay");
     if (s.needs_.continuity) visit(s.drho, per_step, "drho");
     if (s.needs_.shifting) visit(s.sx, per_step, "sx"), visit(s.sy, per_step, "sy");
@@ -104,6 +118,7 @@ struct ParticleStore {
   template <class Store, class Visit>
   static void for_each_start_pair(Store& s, Visit&& visit) {
     visit(s.x, s.x_start), visit(s.y, s.y_start), visit(s.c, s.c_start);
+    for (int e = 0; e < s.needs_.more_species; ++e) visit(s.c_more[e], s.c_more_start[e]);
     if (s.needs_.momentum) visit(s.vx, s.vx_start), visit(s.vy, s.vy_start);
     if (s.needs_.continuity) visit(s.rho, s.rho_start);
   }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -52,6 +53,28 @@ class UpwindSolver {
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess) = 0;
 };
 std::unique_ptr<UpwindSolver> make_upwind_solver(LinearSolver kind, const SparseMatrix& A);
+
+// k(x, y) / k of a reaction: the first zone holding the point (x0 <= x < x1, y0 <= y < y1),
+// else 1 (reaction_terms.cpp).
+double zone_factor_at(const Reaction& r, double x, double y);
+
+// Under-relaxation of an iteration x += relax * dx: halved whenever the change has not
+// improved for 10 iterations (down to 1/16), which breaks the limit cycles a limiter's
+// switches (minmod's kinks) can leave near 1e-10.
+struct StallRelaxation {
+  double relax = 1.0;
+  double best = std::numeric_limits<double>::infinity();
+  int since_best = 0;
+  void update(double change) {
+    if (change < best) {
+      best = change;
+      since_best = 0;
+    } else if (++since_best >= 10 && relax > 0.1) {
+      relax *= 0.5;
+      since_best = 0;
+    }
+  }
+};
 
 // Limited slope from the upwind and downwind differences (TVD region, second order
 // where smooth: both return the true difference for dl == dr).

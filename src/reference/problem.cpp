@@ -15,6 +15,10 @@ std::function<double(double)> parabolic_profile(double u_max, double half_width)
 }
 
 Problem problem_from_case(const Case& c) {
+  if (c.species_count() > 1)
+    throw std::invalid_argument(
+        "the case has " + std::to_string(c.species_count()) +
+        " species: its reference is the network one (network_problem_from_case)");
   // The reaction terms are iterated with a slope bound (reaction_terms.cpp): it must be finite.
   for (std::size_t i = 0; i < c.reactions.size(); ++i) {
     const Reaction& r = c.reactions[i];

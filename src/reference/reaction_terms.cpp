@@ -9,14 +9,13 @@
 #include "reference/finite_volume.hpp"
 
 namespace adrsph::reference::detail {
-namespace {
-
-// k(x, y) / k: the first zone holding the point (x0 <= x < x1, y0 <= y < y1), else 1.
 double zone_factor_at(const Reaction& r, double x, double y) {
   for (const Reaction::Zone& z : r.zones)
     if (x >= z.x0 && x < z.x1 && y >= z.y0 && y < z.y1) return z.factor;
   return 1.0;
 }
+
+namespace {
 
 double rate(const Reaction& r, double k, double c) {
   c = std::max(c, 0.0);
@@ -27,6 +26,8 @@ double rate(const Reaction& r, double k, double c) {
       return k * std::pow(c, r.order);
     case RateLaw::michaelis_menten:
       return k * c / (r.km + c);
+    case RateLaw::bimolecular:
+      break;  // two species: the network reference (reference_network.hpp)
   }
   return 0.0;
 }
@@ -40,6 +41,8 @@ double slope_bound(const Reaction& r, double k, double c_max) {
       return r.order * k * std::pow(std::max(c_max, 0.0), r.order - 1.0);
     case RateLaw::michaelis_menten:
       return k / r.km;
+    case RateLaw::bimolecular:
+      break;
   }
   return 0.0;
 }

@@ -49,26 +49,19 @@ Solution solve_steady(const Problem& p, int nx, int ny, const SolverOptions& opt
   rep.converged = opt.limiter == Limiter::upwind && p.reactions.empty();
   // Under-relaxation, halved whenever the change has not improved for 10 iterations: the
   // limiter's switches (minmod's kinks) can otherwise leave a limit cycle near 1e-10.
-  double relax = 1.0, best = std::numeric_limits<double>::infinity();
-  int since_best = 0;
+  detail::StallRelaxation relaxation;
   for (int it = 1; !rep.converged && it <= opt.max_corrections; ++it) {
     detail::advective_correction(p, g, u_cell, opt.limiter, c, corr);
     detail::add_reaction_correction(p, g, c, corr);
     const Eigen::VectorXd next = solver->solve(sys.b - corr, c);
     const double change = (next - c).cwiseAbs().maxCoeff() / scale;
-    c += relax * (next - c);
+    c += relaxation.relax * (next - c);
     rep.last_change = change;
     rep.corrections = it;
     rep.converged = change < opt.tolerance;
-    if (change < best) {
-      best = change;
-      since_best = 0;
-    } else if (++since_best >= 10 && relax > 0.1) {
-      relax *= 0.5;
-      since_best = 0;
-    }
+    relaxation.update(change);
   }
-  rep.relaxation = relax;
+  rep.relaxation = relaxation.relax;
   rep.solve_seconds = seconds_since(t0);
 
   detail::advective_correction(p, g, u_cell, opt.limiter, c, corr);

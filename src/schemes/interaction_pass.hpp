@@ -16,6 +16,12 @@
 namespace adrsph {
 
 // Diffuse = false leaves the species diffusion to the sub-cycler (diffusion_subcycling.hpp).
+// Network = true also gives the second and later species of a network (ParticleStore::c_more)
+// their eq. (12) rates in the same neighbour walk: each has its own D, and shares the pair
+// weights and the -C div u sum with the first. It sums for ParticleStore::kMaxMore of them
+// whatever the case has (the spare sums read the first species and are dropped), so one
+// instantiation serves every network; a case of one species runs Network = false, the loop
+// it always had.
 //
 // Pair arithmetic in single precision (`real`): the kernel, its gradient and every pair
 // term run 8 lanes wide instead of 4 (perf/README.md, "float pair arithmetic"). Whatever
@@ -23,8 +29,10 @@ namespace adrsph {
 // r_i - r_j (positions are ~1e5 dx from the origin), u_i - u_j, rho_i - rho_j and C_i - C_j
 // (neighbour differences are ~1e-4 of the values). The sums of ~35 pair terms are float
 // too; their rounding (~1e-7 relative) is far below the scheme's own pair-sum errors.
-template <class Scheme, bool Ale, bool Diffuse = true>
+template <class Scheme, bool Ale, bool Diffuse = true, bool Network = false>
 void interaction_pass(ParticleStore& s, const PassContext& ctx) {
+  static_assert(!(Ale && Network), "the ALE term is written for one species");
+  static_assert(ParticleStore::kMaxMore == 3, "the network sums below are written for three");
   using real = float;
   const std::size_t n = s.size();
   const double* x = s.x.data();
@@ -45,6 +53,13 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
   const real eta2 = static_cast<real>(ph.eta2), mass = static_cast<real>(s.mass);
   const real four_nu = static_cast<real>(ph.four_nu), dh = static_cast<real>(ph.delta_h_c0_2);
   const real diffusivity = static_cast<real>(ph.diffusivity);
+  // The network's other species (unused slots read c with D = 0, and are not stored).
+  const int more = s.needs().more_species;
+  auto more_c = [&](int e) { return e < more ? s.c_more[e].data() : c; };
+  const double *c1 = more_c(0), *c2 = more_c(1), *c3 = more_c(2);
+  const real d1 = static_cast<real>(ph.more_diffusivity[0]),
+             d2 = static_cast<real>(ph.more_diffusivity[1]),
+             d3 = static_cast<real>(ph.more_diffusivity[2]);
   // Conventional scheme: the summation density at the next positions (pass_context.hpp).
   constexpr bool kPredict = Scheme::summation_density;
   const DensityPrediction next = ctx.next_density;
@@ -67,9 +82,12 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
     real ax = 0, ay = 0, drho = 0, gx = 0, gy = 0;  // flow
     real cdiff = 0, cdil = 0, cgx = 0, cgy = 0;     // species
     real wsum = 0;                                  // density at the next positions
+    real cd1 = 0, cd2 = 0, cd3 = 0;                 // diffusion of the network's others
+    const double c1i = Network ? c1[i] : 0.0, c2i = Network ? c2[i] : 0.0,
+                 c3i = Network ? c3[i] : 0.0;
     const real ddxi = kPredict ? ddx[i] : real(0), ddyi = kPredict ? ddy[i] : real(0);
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-#pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy, wsum)
+#pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy, wsum, cd1, cd2, cd3)
     for (std::uint32_t k = kb; k < ke; ++k) {
       const std::uint32_t j = nb[k];
       const real dx = static_cast<real>(xi - x[j]), dy = static_cast<real>(yi - y[j]);
@@ -110,6 +128,12 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       const real c_ji = static_cast<real>(c[j] - ci_d);
       if constexpr (Diffuse)
         cdiff += species_diffusion_pair(diffusivity, voli, volj, lap_weight, -c_ji, dmask[j]);
+      if constexpr (Diffuse && Network) {
+        const real m = dmask[j];
+        cd1 += species_diffusion_pair(d1, voli, volj, lap_weight, real(c1i - c1[j]), m);
+        cd2 += species_diffusion_pair(d2, voli, volj, lap_weight, real(c2i - c2[j]), m);
+        cd3 += species_diffusion_pair(d3, voli, volj, lap_weight, real(c3i - c3[j]), m);
+      }
       if constexpr (Ale && Scheme::shifting) {
         // grad C_i = sum_j V_j (C_j - C_i) grad W over the particles that carry species:
         // fluid, inflow buffer (diffusion_mask) and outflow buffer (fluid_side).
@@ -133,6 +157,12 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
       if constexpr (Ale) dci += sxi * cgx + syi * cgy;  // du_i . grad C_i
     }
     s.dc[i] = static_cast<float>(dci);
+    if constexpr (Network) {
+      const real sums[3] = {cd1, cd2, cd3};
+      const double ci_more[3] = {c1i, c2i, c3i};
+      for (int e = 0; e < more; ++e)
+        s.dc_more[e][i] = static_cast<float>(double(sums[e]) + ci_more[e] * double(cdil));
+    }
   }
 }
 

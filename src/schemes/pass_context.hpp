@@ -2,6 +2,8 @@
 // constants of the physics, derived once from the case.
 #pragma once
 
+#include <array>
+
 #include "kernels/quintic_kernel.hpp"
 #include "neighbours/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
@@ -14,7 +16,11 @@ struct PhysicsConstants {
   double eta2 = 0.0;          // (0.1 h)^2, eqs. (7), (12)
   double four_nu = 0.0;       // 2 (nu_i + nu_j) with uniform nu
   double delta_h_c0_2 = 0.0;  // 2 delta h c0, eq. (8)
-  double diffusivity = 0.0;   // D
+  double diffusivity = 0.0;   // D (of the first species)
+  // D of the second and later species of a network (ParticleStore::c_more), and the largest
+  // D of all (the sub-cycled diffusion's weights and its step limit).
+  std::array<double, ParticleStore::kMaxMore> more_diffusivity{};
+  double max_diffusivity = 0.0;
   TaitEos eos;
   ShiftingVelocity shifting;  // set per step (depends on dt)
 };

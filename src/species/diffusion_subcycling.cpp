@@ -14,7 +14,7 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
   const double* y = s.y.data();
   const float* vol = s.vol.data();
   const float* dmask = s.diffusion_mask.data();
-  const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.diffusivity;
+  const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.max_diffusivity;
   const QuinticKernel kernel = ctx.kernel;  // local copy: see interaction_pass.hpp
   float* w = weight_.data();
 #pragma omp parallel for schedule(static)
@@ -35,8 +35,8 @@ void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassConte
 }
 
 double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
-                                 const std::vector<double>& c, std::vector<double>& rate,
-                                 bool track) const {
+                                 const std::vector<double>& c, double factor,
+                                 std::vector<double>& rate, bool track) const {
   const std::size_t n = s.size();
   const std::uint32_t* nb = ctx.neighbours.data();
   const float* w = weight_.data();
@@ -50,14 +50,14 @@ double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
 #pragma omp simd reduction(+ : sum)
     for (std::uint32_t k = kb; k < ke; ++k) sum += w[k] * (ci - cc[nb[k]]);
-    rate[i] = sum;
+    rate[i] = factor * sum;
     if (track) {  // flux from the buffers, for the species balance (tests, diagnostics)
       double from_buffers = 0.0;
       for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
         const std::uint8_t kj = s.kind[nb[k]];
         if (kj == kInletByte || kj == kOutletByte) from_buffers += w[k] * (ci - cc[nb[k]]);
       }
-      exchange += s.vol[i] * from_buffers;
+      exchange += s.vol[i] * factor * from_buffers;
     }
   }
   return exchange;
@@ -82,12 +82,19 @@ double DiffusionSubcycler::advance(ParticleStore& s, const PassContext& ctx, dou
   compute_weights(s, ctx);  // the configuration is frozen over the step
   double exchange = 0.0;
   const double h = dt / plan.supersteps;
-  for (int k = 0; k < plan.supersteps; ++k) exchange += superstep(s, ctx, h, plan.stages, track);
+  const double d_max = ctx.phys.max_diffusivity;
+  auto factor = [d_max](double d) { return d_max > 0.0 ? d / d_max : 0.0; };
+  const double f0 = factor(ctx.phys.diffusivity);
+  for (int k = 0; k < plan.supersteps; ++k)
+    exchange += superstep(s, s.c, f0, ctx, h, plan.stages, track);
+  for (int e = 0; e < s.needs().more_species; ++e)
+    for (int k = 0; k < plan.supersteps; ++k)
+      superstep(s, s.c_more[e], factor(ctx.phys.more_diffusivity[e]), ctx, h, plan.stages, false);
   return exchange;
 }
 
-double DiffusionSubcycler::superstep(ParticleStore& s, const PassContext& ctx, double dt,
-                                     int stages, bool track) {
+double DiffusionSubcycler::superstep(ParticleStore& s, std::vector<double>& c, double factor,
+                                     const PassContext& ctx, double dt, int stages, bool track) {
   // One RKL2 super-step (Meyer, Balsara & Aslam, J. Comput. Phys. 257, 2014, eqs. 16-18):
   //   Y1 = Y0 + mu~1 dt L(Y0)
   //   Yj = mu_j Y(j-1) + nu_j Y(j-2) + (1 - mu_j - nu_j) Y0 + mu~j dt L(Y(j-1)) + g~j dt L(Y0)
@@ -98,12 +105,12 @@ double DiffusionSubcycler::superstep(ParticleStore& s, const PassContext& ctx, d
   const int st = std::max(stages, 2);
   const double w1 = 4.0 / (static_cast<double>(st) * st + st - 2.0);
   auto b = [](int j) { return j < 2 ? 1.0 / 3.0 : (j * j + j - 2.0) / (2.0 * j * (j + 1.0)); };
-  y0_.assign(s.c.begin(), s.c.begin() + static_cast<std::ptrdiff_t>(n));
+  y0_.assign(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(n));
   l0_.assign(n, 0.0);  // rates are written for fluid particles only: the rest stays 0
   rate_.assign(n, 0.0);
   // Y_j - Y0 = dt sum_k beta_j[k] L(Y_k): the buffer exchange, linear in the rates, follows.
   std::vector<double> e(st, 0.0), beta_m2(st, 0.0), beta_m1(st, 0.0), beta(st, 0.0);
-  e[0] = rates(s, ctx, y0_, l0_, track);
+  e[0] = rates(s, ctx, y0_, factor, l0_, track);
   ym2_ = y0_;
   ym1_.resize(n);
   const double mu1 = b(1) * w1;
@@ -116,7 +123,7 @@ double DiffusionSubcycler::superstep(ParticleStore& s, const PassContext& ctx, d
     const double nu = -(j - 1.0) / j * b(j) / b(j - 2);
     const double mut = mu * w1;
     const double gt = -(1.0 - b(j - 1)) * mut;
-    e[j - 1] = rates(s, ctx, ym1_, rate_, track);
+    e[j - 1] = rates(s, ctx, ym1_, factor, rate_, track);
     const double* y0 = y0_.data();
     const double* l0 = l0_.data();
     const double* r = rate_.data();
@@ -141,7 +148,7 @@ double DiffusionSubcycler::superstep(ParticleStore& s, const PassContext& ctx, d
   const std::size_t real = n - 1;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < real; ++i)
-    if (s.kind[i] == kFluidByte) s.c[i] = ym1_[i];
+    if (s.kind[i] == kFluidByte) c[i] = ym1_[i];
   return exchange;
 }
 

@@ -25,19 +25,23 @@ class DiffusionSubcycler {
   static Plan plan(double ratio);
 
   // Integrate dC/dt = sum_j w_ij (C_i - C_j) over dt by RKL2 super-steps for the fluid
-  // particles (buffers keep their C). With `track`, returns the moles diffused in from the
-  // inflow and outflow buffers (sum_i V_i * flux), for the species balance; else 0.
+  // particles (buffers keep their C), for every species: the weights are computed once with
+  // the largest D and scaled by D_s / D_max for each (the plan, set by the largest D, is
+  // stable for the smaller ones). With `track`, returns the moles of the first species
+  // diffused in from the inflow and outflow buffers (sum_i V_i * flux), for the species
+  // balance; else 0.
   double advance(ParticleStore& s, const PassContext& ctx, double dt, Plan plan, bool track);
 
   std::size_t bytes() const { return weight_.capacity() * sizeof(float); }
 
  private:
   void compute_weights(const ParticleStore& s, const PassContext& ctx);
-  double superstep(ParticleStore& s, const PassContext& ctx, double dt, int stages, bool track);
-  // rate_i = sum_j w_ij (c_i - c_j) for fluid i; with `track`, returns
+  double superstep(ParticleStore& s, std::vector<double>& c, double factor, const PassContext& ctx,
+                   double dt, int stages, bool track);
+  // rate_i = factor sum_j w_ij (c_i - c_j) for fluid i; with `track`, returns
   // sum_i V_i * (exchange with the buffers).
   double rates(const ParticleStore& s, const PassContext& ctx, const std::vector<double>& c,
-               std::vector<double>& rate, bool track) const;
+               double factor, std::vector<double>& rate, bool track) const;
 
   std::vector<float> weight_;  // one per neighbour-list entry (float halves the memory)
   std::vector<double> y0_, l0_, ym1_, ym2_, yj_, rate_;  // RKL2 stages (one value per particle)

@@ -46,14 +46,56 @@ double react_exact(const Reaction& r, double k_eff, double c0, double t) {
     }
     case RateLaw::michaelis_menten:
       return michaelis_menten(r.km, k_eff, c0, t);
+    case RateLaw::bimolecular:
+      break;  // two reactants: bimolecular_extent
   }
+  return c0;
+}
+
+double bimolecular_extent(double k_eff, double a0, double b0, double t) {
+  if (a0 <= 0.0 || b0 <= 0.0 || k_eff <= 0.0 || t <= 0.0) return 0.0;
+  // dA/dt = dB/dt = -k A B with A - B = Delta fixed: A(t) = A0 / (1 + B0 phi),
+  // phi = -expm1(-k Delta t) / Delta -> k t as Delta -> 0 (no cancellation either way).
+  const double delta = a0 - b0;
+  const double phi = delta == 0.0 ? k_eff * t : -std::expm1(-k_eff * delta * t) / delta;
+  const double a = a0 / (1.0 + b0 * phi);
+  return std::min({a0 - a, a0, b0});
+}
+
+void react_network(const Case& c, double x, double y, std::span<double> conc, double dt) {
+  if (c.species.k > 0.0) conc[0] *= std::exp(-c.species.k * dt);
+  for (const Reaction& r : c.reactions) {
+    const double k_eff = r.zones.empty() ? r.k : r.k * zone_factor(r, x, y);
+    double taken = 0.0;
+    if (r.law == RateLaw::bimolecular) {
+      double& a = conc[static_cast<std::size_t>(r.reactants[0])];
+      double& b = conc[static_cast<std::size_t>(r.reactants[1])];
+      taken = bimolecular_extent(k_eff, a, b, dt);
+      a = std::max(a - taken, 0.0);
+      b = std::max(b - taken, 0.0);
+    } else {
+      double& a = conc[static_cast<std::size_t>(r.reactants[0])];
+      const double after = react_exact(r, k_eff, a, dt);
+      taken = a - after;
+      a = after;
+    }
+    for (const int p : r.products) conc[static_cast<std::size_t>(p)] += taken;
+  }
+}
+
+std::vector<double> batch_state(const Case& c, std::vector<double> c0, double t) {
+  constexpr int kSub = 1000;
+  Case plain = c;  // zones left out
+  for (Reaction& r : plain.reactions) r.zones.clear();
+  for (int i = 0; i < kSub; ++i) react_network(plain, 0.0, 0.0, c0, t / kSub);
   return c0;
 }
 
 double batch_concentration(const Case& c, double c0, double t, double factor) {
   constexpr int kSub = 1000;
   const double dt = t / kSub;
-  const Reaction first_order{RateLaw::first_order, c.species.k, 1.0, 0.0, {}};
+  Reaction first_order;
+  first_order.k = c.species.k;
   double conc = c0;
   for (int i = 0; i < kSub; ++i) {
     conc = react_exact(first_order, c.species.k * factor, conc, dt);

@@ -43,8 +43,10 @@ class FieldsWriter {
 
 // Writes the XDMF 2 sidecar: a temporal collection of Polyvertex grids with X_Y geometry,
 // pointing into `h5_name` (a path relative to the .xmf file, normally "fields.h5").
+// `more_c`: the datasets of the second and later species in every frame ("c_<name>").
 void write_fields_xdmf(const std::filesystem::path& xmf, const std::string& h5_name,
-                       const std::vector<FieldFrameInfo>& frames);
+                       const std::vector<FieldFrameInfo>& frames,
+                       const std::vector<std::string>& more_c = {});
 
 // One frame read back (for tests, post-processing and restarts).
 struct FieldData {
