@@ -246,6 +246,7 @@ TEST(ReactionNetwork, RestartIsExact) {
   c.time.max_steps = 160;
   c.time.check_interval = 0.002;
   c.time.stop_when_steady = false;
+  c.output.outlet_interval = 0.001;
   NetworkRecorder whole(0);
   const RunResult a = run_simulation(c, whole);
   ASSERT_EQ(a.status, "ok") << a.message;
@@ -270,6 +271,21 @@ TEST(ReactionNetwork, RestartIsExact) {
   EXPECT_EQ(whole.more, second.more);
   for (std::size_t s = 0; s < 2; ++s)
     EXPECT_EQ(a.more_species[s].stations.c_mean, b.more_species[s].stations.c_mean);
+  // The outlet series of every species, split from the one series the checkpoint keeps.
+  ASSERT_EQ(a.more_outlet.size(), 2u);
+  ASSERT_GE(a.outlet.size(), 10u);  // one sample per 1 ms over 160 steps
+  ASSERT_EQ(b.more_outlet.size(), 2u);
+  for (std::size_t s = 0; s < 2; ++s) {
+    ASSERT_EQ(a.more_outlet[s].size(), a.outlet.size());
+    ASSERT_EQ(b.more_outlet[s].size(), a.outlet.size());
+    for (std::size_t i = 0; i < a.outlet.size(); ++i) {
+      EXPECT_EQ(a.more_outlet[s][i].t, a.outlet[i].t);
+      EXPECT_EQ(a.more_outlet[s][i].c_flow, b.more_outlet[s][i].c_flow);
+    }
+  }
+  // At the start the outlet holds the initial fluid: B at 1.5, P at 0.
+  EXPECT_NEAR(a.more_outlet[0].front().c_flow, 1.5, 1e-6);
+  EXPECT_NEAR(a.more_outlet[1].front().c_flow, 0.0, 1e-6);
   omp_set_num_threads(threads);
 }
 

@@ -70,7 +70,7 @@ struct RunCheckpoint {
   SteadySnapshot steady;
   std::vector<std::pair<double, ProbeTable>> average_window;  // time.average_window samples
   std::vector<HistoryRow> history;
-  std::vector<OutletRow> outlet;  // output.outlet_interval samples so far
+  std::vector<OutletRow> outlet;  // output.outlet_interval samples so far (every species')
   std::string jitter_state;       // the check-instant generator (std::minstd_rand, streamed)
   double next_check = 0.0;
   std::size_t next_field = 0;    // next output.field_times entry

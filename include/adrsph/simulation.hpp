@@ -140,8 +140,10 @@ struct RunResult {
   bool warm_start_steady = false;
   // Section averages at the stations at every probe check: the approach to steady state.
   std::vector<HistoryRow> history;
-  // The outlet every output.outlet_interval (outlet.csv; empty when the interval is 0).
+  // The outlet every output.outlet_interval (outlet.csv; empty when the interval is 0), of
+  // the first species; the others of a network in more_outlet (outlet_<name>.csv).
   std::vector<OutletRow> outlet;
+  std::vector<std::vector<OutletRow>> more_outlet;
   double peak_rss_bytes = 0.0;  // largest resident set of the process (all segments)
   // Heap bytes the engine holds for the particles at the end (capacity): the particle arrays,
   // the neighbour lists, the diffusion weights of a split species step (0 if none).

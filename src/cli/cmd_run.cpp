@@ -80,6 +80,11 @@ std::vector<std::string> write_outputs(const fs::path& dir, const Case& c, const
     write_outlet_csv(dir / "outlet.csv", r.outlet);
     files.push_back("outlet.csv");
   }
+  for (std::size_t e = 0; e < r.more_outlet.size() && e < c.more_species.size(); ++e) {
+    if (r.more_outlet[e].empty()) continue;
+    write_outlet_csv(dir / ("outlet_" + c.more_species[e].name + ".csv"), r.more_outlet[e]);
+    files.push_back("outlet_" + c.more_species[e].name + ".csv");
+  }
   for (const RunResult::SpeciesProbes& sp : r.more_species) {
     write_probes_csv(dir / ("probes_" + sp.name + ".csv"), sp.probes);
     write_stations_csv(dir / ("stations_" + sp.name + ".csv"), sp.stations);

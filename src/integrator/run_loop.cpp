@@ -43,6 +43,12 @@ std::vector<ProbeTable> split_species(const ProbeTable& all, int count) {
   return parts;
 }
 
+std::vector<std::vector<OutletRow>> split_outlet(const std::vector<OutletRow>& all, int count) {
+  std::vector<std::vector<OutletRow>> parts(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < all.size(); ++i) parts[i % parts.size()].push_back(all[i]);
+  return parts;
+}
+
 double peak_rss_bytes() {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
@@ -121,10 +127,14 @@ void RunLoop::sample() {
 void RunLoop::sample_outlet() {
   ScopedPhase timer(solver_.timers(), Phase::probes);
   const double t = solver_.time(), every = c_.output.outlet_interval;
-  OutletRow row =
-      solver_.sampler().outlet_means(c_.geometry.length, c_.geometry.half_width, n_section_);
-  row.t = t;
-  result_.outlet.push_back(row);
+  // One row per species, in species order (a network's are split at the end of the run,
+  // split_outlet): the checkpoint keeps them as one series.
+  for (int sp = 0; sp < solver_.species_count(); ++sp) {
+    OutletRow row =
+        solver_.sampler(sp).outlet_means(c_.geometry.length, c_.geometry.half_width, n_section_);
+    row.t = t;
+    result_.outlet.push_back(row);
+  }
   next_outlet_ = every * (std::floor(t / every + 1e-9) + 1.0);
 }
 

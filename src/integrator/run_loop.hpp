@@ -32,6 +32,9 @@ StationTable stations_from(const ProbeTable& p, double length);
 // The probe table of a network (RunLoop::sample: the species one after the other) split into
 // one table per species.
 std::vector<ProbeTable> split_species(const ProbeTable& all, int count);
+// The outlet series of a network (RunLoop::sample_outlet: one row per species at each
+// sample) split into one series per species.
+std::vector<std::vector<OutletRow>> split_outlet(const std::vector<OutletRow>& all, int count);
 // Peak resident memory of the process so far [bytes].
 double peak_rss_bytes();
 

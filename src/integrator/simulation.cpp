@@ -165,6 +165,9 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
     result.probes = loop.last_probes();
   }
   if (c.species_count() > 1) {
+    std::vector<std::vector<OutletRow>> outlets = split_outlet(result.outlet, c.species_count());
+    result.outlet = outlets[0];
+    result.more_outlet.assign(outlets.begin() + 1, outlets.end());
     const std::vector<ProbeTable> parts = split_species(result.probes, c.species_count());
     result.probes = parts[0];
     for (int sp = 1; sp < c.species_count(); ++sp)
