@@ -113,6 +113,8 @@ TEST(ReactionNetwork, BadTablesNameTheKey) {
       {"reactants = [\"A\", \"B\"]", "reactants = [\"A\"]", "reaction[0].reactants", "two species"},
       {"reactants = [\"A\", \"B\"]", "reactants = [\"A\", \"A\"]", "reaction[0].reactants",
        "two different"},
+      {"reactants = [\"A\", \"B\"]", "reactants = []", "reaction[0].reactants", "got 0"},
+      {"products = [\"P\"]", "products = [3]", "reaction[0].products[0]", "a string"},
       {"products = [\"P\"]", "products = [\"B\"]", "reaction[0].products[0]", "neither a reactant"},
       {"name = \"B\"", "name = \"A\"", "species[1].name", "no other species"},
       {"name = \"B\"", "name = \"B 2\"", "species[1].name", "letters, digits and _"},

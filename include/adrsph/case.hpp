@@ -5,6 +5,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,7 +40,8 @@ struct Reaction {
   // `reactants = ["A", "B"]`, `products = ["C"]`: species by name, resolved to indices into
   // Case::species_at() when the case is loaded. Without `reactants`, the first species; one
   // for every law but bimolecular, which takes two different ones.
-  std::vector<std::string> reactant_names, product_names;
+  std::optional<std::vector<std::string>> reactant_names;  // not given: the first species
+  std::vector<std::string> product_names;
   std::vector<int> reactants = {0}, products;
 
   // A reaction of the first species with no products (the one-species form).

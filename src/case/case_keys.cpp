@@ -141,7 +141,8 @@ std::vector<Reaction> read_reactions(const toml::node& n, const ValueSource& src
       } else if (name == "reactants" || name == "products") {
         const auto* list = v.as_array();
         if (!list) fail(f, "an array of species names, e.g. [\"A\", \"B\"]", v);
-        std::vector<std::string>& names = name == "reactants" ? r.reactant_names : r.product_names;
+        if (name == "reactants") r.reactant_names.emplace();
+        std::vector<std::string>& names = name == "reactants" ? *r.reactant_names : r.product_names;
         for (std::size_t j = 0; j < list->size(); ++j) {
           ValueSource e = f;
           e.key = f.key + "[" + std::to_string(j) + "]";

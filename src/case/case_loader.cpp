@@ -132,11 +132,11 @@ void resolve_species_names(Case& c, const std::string& file) {
   for (std::size_t i = 0; i < c.reactions.size(); ++i) {
     Reaction& r = c.reactions[i];
     const std::string key = "reaction[" + std::to_string(i) + "].";
-    if (!r.reactant_names.empty()) {
+    if (r.reactant_names) {
       r.reactants.clear();
-      for (std::size_t j = 0; j < r.reactant_names.size(); ++j)
+      for (std::size_t j = 0; j < r.reactant_names->size(); ++j)
         r.reactants.push_back(
-            index_of(r.reactant_names[j], key + "reactants[" + std::to_string(j) + "]"));
+            index_of((*r.reactant_names)[j], key + "reactants[" + std::to_string(j) + "]"));
     }
     r.products.clear();
     for (std::size_t j = 0; j < r.product_names.size(); ++j)
