@@ -169,8 +169,11 @@ Case network_channel(Scheme scheme, Flow flow, double d_b) {
 TEST(ReactionNetwork, TransportKeepsTheElementBalanceExactly) {
   // With D_A = D_P the sum A + P obeys the reaction-free transport of a field that starts and
   // enters at 2 everywhere: it must stay 2 (prescribed flow: div u = 0, no dilatation). With
-  // D_B = D_A as well, B - A stays -0.5. Any error of the network's fused pass, its
-  // integration or its reaction step breaks these at far above round-off.
+  // D_B = D_A as well, B - A stays -0.5. The rates are single precision (6e-8 relative) and
+  // A's and P's are rounded apart, so the sum holds to their rounding times the change
+  // (measured 5e-13 in the optimised build, 1.4e-10 in the sanitizer build), not to double
+  // round-off: the bound is 1e-8. A wrong D, a missing term or a reaction step that loses
+  // moles moves the sum by the size of the reaction's change (P reaches 0.76).
   SphSolver s(network_channel(Scheme::modern, Flow::prescribed, 10.0));
   const double dt = s.dt_limits().chosen;
   for (int i = 0; i < 400; ++i) ASSERT_TRUE(s.step(dt)) << s.failure();
@@ -185,8 +188,8 @@ TEST(ReactionNetwork, TransportKeepsTheElementBalanceExactly) {
   std::printf("  t = %.3f s: max |A + P - 2| = %.2e, max |B - A + 0.5| = %.2e, max P = %.3f\n",
               s.time(), sum_dev, diff_dev, reacted);
   EXPECT_GT(reacted, 0.05);  // the reaction has run
-  EXPECT_LT(sum_dev, 1e-12);
-  EXPECT_LT(diff_dev, 1e-12);
+  EXPECT_LT(sum_dev, 1e-8);
+  EXPECT_LT(diff_dev, 1e-8);
 }
 
 TEST(ReactionNetwork, FusedPassEqualsTheOneSpeciesPass) {
