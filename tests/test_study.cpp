@@ -150,8 +150,8 @@ TEST(StudyPlan, PaperStudyExpandsInFileOrder) {
   EXPECT_EQ(find_run(runs, "warm-modern-pe1000-dx0.5").sets[0], "time.warm_start=true");
   // The speed of sound is the flow's, not the reference's: a group may change it.
   EXPECT_THAT(find_run(runs, "c0-pe1000").sets,
-              ElementsAre("time.warm_start=false", "time.cfl=0.75", "scheme=modern",
-                          "species.D=10", "particles.dx=0.25", "fluid.c0_factor=20"));
+              ElementsAre("time.warm_start=false", "time.cfl=0.75", "scheme=modern", "species.D=10",
+                          "particles.dx=0.25", "fluid.c0_factor=20"));
 }
 
 TEST(StudyPlan, CaseKeyAxesNameRunsByTheirLastComponent) {
@@ -277,6 +277,15 @@ TEST(StudyCli, TinyStudyRunsOnceAndResumes) {
   test::write_file(dir / "tiny.toml", tiny_study(20));
   if (fs::exists(runs / "report" / "runs" / "t-pe1000" / "run.json")) {
     fs::rename(runs / "report", dir / "kept_report");
+    fs::remove_all(runs);
+    // Started there without --resume, the study runs what it is asked to but leaves the report
+    // alone: written from the runs directory, it would delete the report's other done run.
+    r = test::run_adrsph("study tiny.toml --only t-pe1000 --report kept_report", dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_THAT(r.out, HasSubstr("t-pe1000: started"));
+    EXPECT_THAT(r.out, HasSubstr("report: not written"));
+    EXPECT_THAT(r.out, HasSubstr("(e.g. t-pe100000)"));
+    EXPECT_TRUE(fs::exists(dir / "kept_report" / "runs" / "t-pe100000" / "run.json"));
     fs::remove_all(runs);
     r = test::run_adrsph("study tiny.toml --resume --report kept_report", dir.path());
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;

@@ -234,7 +234,17 @@ int run_study_command(const StudyOptions& o) {
               setup.threads_per_run, runs_dir.c_str());
   std::fflush(stdout);
   const int code = run_study(setup);
-  write_report(study.report, runs_dir, report_dir);
+  // A report is written from RUNS_DIR alone: one written while the report holds done runs
+  // that RUNS_DIR lacks (a fresh runs directory started without --resume) would delete them.
+  if (const auto kept = report_only_runs(runs_dir, report_dir, runs); !kept.empty())
+    std::printf(
+        "report: not written: %s holds %zu done run(s) that %s lacks (e.g. %s), and a "
+        "report from %s would drop them; continue with --resume, which takes them back "
+        "first: %s\n",
+        report_dir.c_str(), kept.size(), runs_dir.c_str(), kept.front().c_str(), runs_dir.c_str(),
+        setup.resume_command.c_str());
+  else
+    write_report(study.report, runs_dir, report_dir);
   return code;
 }
 

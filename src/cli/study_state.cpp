@@ -102,16 +102,32 @@ bool run_present(const RunFiles& f) {
          fs::exists(f.log, ec);
 }
 
+namespace {
+// The report's copy of run r is one this study would take back: a run.json of this results
+// version, made with the settings the study gives r now, and nothing of r in RUNS_DIR.
+bool restorable(const fs::path& runs_dir, const fs::path& report_dir, const analysis::StudyRun& r) {
+  const RunRecord saved = read_run_record(report_dir / "runs" / r.name);
+  return !run_present(run_files(runs_dir, r.name)) && !saved.status.empty() &&
+         saved.results_version == kResultsVersion &&
+         (!saved.overrides || *saved.overrides == r.sets);
+}
+}  // namespace
+
+std::vector<std::string> report_only_runs(const fs::path& runs_dir, const fs::path& report_dir,
+                                          const std::vector<analysis::StudyRun>& runs) {
+  std::vector<std::string> names;
+  for (const analysis::StudyRun& r : runs)
+    if (restorable(runs_dir, report_dir, r)) names.push_back(r.name);
+  return names;
+}
+
 std::vector<std::string> restore_from_report(const fs::path& runs_dir, const fs::path& report_dir,
                                              const std::vector<analysis::StudyRun>& runs) {
   std::vector<std::string> restored;
   for (const analysis::StudyRun& r : runs) {
+    if (!restorable(runs_dir, report_dir, r)) continue;
     const RunFiles f = run_files(runs_dir, r.name);
     const fs::path copy = report_dir / "runs" / r.name;
-    const RunRecord saved = read_run_record(copy);
-    if (run_present(f) || saved.status.empty() || saved.results_version != kResultsVersion ||
-        (saved.overrides && *saved.overrides != r.sets))
-      continue;  // on disk already, nothing saved, an older engine's numbers or other settings
     std::error_code ec;
     fs::create_directories(f.dir.parent_path(), ec);
     fs::copy(copy, f.dir, fs::copy_options::recursive, ec);

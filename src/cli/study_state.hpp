@@ -42,6 +42,12 @@ std::vector<std::string> restore_from_report(const std::filesystem::path& runs_d
                                              const std::filesystem::path& report_dir,
                                              const std::vector<analysis::StudyRun>& runs);
 
+// The runs whose done copy in REPORT_DIR restore_from_report would take back (nothing of them
+// in RUNS_DIR). A report written from RUNS_DIR now would drop them: the study writes none.
+std::vector<std::string> report_only_runs(const std::filesystem::path& runs_dir,
+                                          const std::filesystem::path& report_dir,
+                                          const std::vector<analysis::StudyRun>& runs);
+
 // The run.json fields the study prints. `status` is empty when there is no readable run.json.
 struct RunRecord {
   std::string status, message;
