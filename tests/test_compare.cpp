@@ -75,6 +75,36 @@ TEST(Compare, RunInfoBySimpleKeySearch) {
   EXPECT_DOUBLE_EQ(*info.pe, 1e5);
   EXPECT_EQ(*info.scheme, "conventional");
   EXPECT_FALSE(analysis::read_run_info(dir / "missing.json").pe);
+  EXPECT_TRUE(info.paper_kinetics);  // no reactions: species.k, the paper's first order
+}
+
+// The paper's table 3 goes beside a run only when its kinetics are the paper's.
+TEST(Compare, PaperColumnsOnlyForThePapersKinetics) {
+  test::TempDir dir;
+  auto info_of = [&](const std::string& reactions) {
+    test::write_file(dir / "run.json",
+                     "{\"scheme\": \"modern\", \"Pe\": 1000, \"reactions\": " + reactions + "}");
+    return analysis::read_run_info(dir / "run.json");
+  };
+  EXPECT_TRUE(info_of(R"([{"law": "first_order", "k": 1.462, "zones": []}])").paper_kinetics);
+  EXPECT_FALSE(info_of(R"([{"law": "michaelis_menten", "zones": []}])").paper_kinetics);
+  EXPECT_FALSE(info_of(R"([{"law" : "first_order", "zones": [{"x0": 1}]}])").paper_kinetics);
+  EXPECT_FALSE(
+      info_of(R"([{"law": "first_order", "zones": []}, {"law": "first_order", "zones": []}])")
+          .paper_kinetics);
+  const auto mm = info_of(R"([{"law": "michaelis_menten", "zones": []}])");
+  ASSERT_TRUE(mm.pe);
+  EXPECT_DOUBLE_EQ(*mm.pe, 1000.0);  // Pe is still shown
+
+  const std::vector<analysis::StationError> stations = {{25.0, 1.0, 1.01, 0.0099, {}, {}}};
+  const std::string md = analysis::compare_markdown("run", "ref", mm, stations, {});
+  EXPECT_THAT(md, testing::HasSubstr("Pe = 1000, scheme = modern"));
+  EXPECT_THAT(md, testing::Not(testing::HasSubstr("paper, modern")));
+  EXPECT_THAT(md, testing::HasSubstr("no paper columns"));
+  analysis::RunInfo paper = mm;
+  paper.paper_kinetics = true;
+  EXPECT_THAT(analysis::compare_markdown("run", "ref", paper, stations, {}),
+              testing::HasSubstr("paper, modern"));
 }
 
 // The command end to end: 2.00% in the table, the paper's conventional Pe = 1000 column.

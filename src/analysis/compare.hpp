@@ -39,10 +39,13 @@ struct StationError {
 std::vector<StationError> station_errors(const StationTable& run, const StationTable& ref,
                                          std::optional<double> pe);
 
-// What the run says of itself (RUN_DIR/run.json): the first "Pe" number and "scheme" string.
+// What the run says of itself (RUN_DIR/run.json): the first "Pe" number and "scheme" string,
+// and whether its kinetics are the paper's (no `reactions`, or one first-order reaction
+// without zones): the paper's table 3 is beside the run only then.
 struct RunInfo {
   std::optional<double> pe;
   std::optional<std::string> scheme;
+  bool paper_kinetics = true;
 };
 RunInfo read_run_info(const std::filesystem::path& run_json);
 

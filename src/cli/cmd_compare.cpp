@@ -74,7 +74,8 @@ int compare_species(const CompareOptions& o, const SpeciesFiles& sp, analysis::R
   std::vector<analysis::StationError> stations;
   try {
     lines = analysis::line_errors(run_probes, ref_probes);
-    stations = analysis::station_errors(run_stations, ref_stations, info.pe);
+    stations = analysis::station_errors(run_stations, ref_stations,
+                                        info.paper_kinetics ? info.pe : std::nullopt);
   } catch (const std::exception& e) {
     std::cerr << "adrsph compare: " << e.what() << "\n";
     return kExitBadInput;
@@ -111,7 +112,7 @@ int run_compare(const CompareOptions& o) {
   if (!info.pe) info.pe = analysis::read_run_info(ref_dir / "reference.json").pe;
   const std::vector<SpeciesFiles> more = more_species_of(run_dir);
   // The paper's table 3 is of one species with first-order kinetics: not for a network.
-  if (!more.empty()) info.pe.reset();
+  if (!more.empty()) info.paper_kinetics = false;
   const fs::path md_file = o.out.empty() ? run_dir / "compare.md" : fs::path(o.out);
   if (const int rc = compare_species(o, {}, info, md_file); rc != kExitOk) return rc;
   for (const SpeciesFiles& sp : more) {
