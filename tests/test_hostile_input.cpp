@@ -226,6 +226,13 @@ INSTANTIATE_TEST_SUITE_P(
                 with(kRun, " --set fluid.nu=1e30"),
                 {"fluid.nu", "never end"}},
         Hostile{"HugeDiffusivity", {}, with(kRun, " --set species.D=1e308"), {"species.D"}},
+        // In a network the species that sets the diffusion limit is named, not the first.
+        Hostile{"HugeDiffusivityOfTheSecondSpecies",
+                {{"net.toml",
+                  "name = \"n\"\n[particles]\ndx = 0.5\n[[species]]\nname = \"A\"\nD = 0.1\n"
+                  "[[species]]\nname = \"B\"\nD = 1e308\n"}},
+                "run net.toml --out old",
+                {"species[1].D", "1e+308"}},
         Hostile{
             "FixedDtAboveTheLimit", {}, with(kRun, " --set time.dt=0.01"), {"time.dt", "--force"}},
         Hostile{"DtFactorAboveTheLimit",

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "boundaries/channel_scene.hpp"
 #include "integrator/time_step.hpp"
@@ -79,15 +81,27 @@ std::optional<PreflightProblem> check_fixed_dt(const Case& c) {
       true};
 }
 
+// The species with the largest D, which sets the explicit diffusion limit: its D key as
+// the case file spells it ("species.D", or "species[s].D" in a [[species]] network).
+std::pair<std::string, double> fastest_diffusion(const Case& c) {
+  int fastest = 0;
+  for (int s = 1; s < c.species_count(); ++s)
+    if (c.species_at(s).D > c.species_at(fastest).D) fastest = s;
+  const std::string key =
+      c.more_species.empty() ? "species.D" : "species[" + std::to_string(fastest) + "].D";
+  return {key, c.species_at(fastest).D};
+}
+
 // Steps of one pass of the fluid through the channel: a step so small that the run could
 // never get anywhere is refused instead of left to hang.
 std::optional<PreflightProblem> check_cost(const Case& c) {
   const TimeStepLimits l = time_step_limits(c);
+  const auto [d_key, d_max] = fastest_diffusion(c);
   if (l.diffusion > 0.0 && l.diffusion_stages > 1) {
     const double flow = l.chosen, ratio = flow / l.diffusion;
     if (ratio > kMaxDiffusionRatio)
-      return PreflightProblem{"species.D",
-                              "D = " + num(c.species.D) + " puts the explicit diffusion limit " +
+      return PreflightProblem{d_key,
+                              "D = " + num(d_max) + " puts the explicit diffusion limit " +
                                   num(ratio) + " times below the flow's step (at most " +
                                   num(kMaxDiffusionRatio) +
                                   " is planned for): expected a smaller D",
@@ -99,7 +113,7 @@ std::optional<PreflightProblem> check_cost(const Case& c) {
                       (l.diffusion_stages > 1 ? 1.0 + l.diffusion_stages : 1.0);
   if (!(work <= kMaxParticleStepsPerPass)) {
     const std::string key = l.binding.rfind("viscous", 0) == 0     ? "fluid.nu"
-                            : l.binding.rfind("diffusion", 0) == 0 ? "species.D"
+                            : l.binding.rfind("diffusion", 0) == 0 ? d_key
                             : l.binding.rfind("fixed", 0) == 0     ? "time.dt"
                                                                    : "particles.dx";
     return PreflightProblem{key,
