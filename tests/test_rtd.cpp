@@ -21,6 +21,7 @@ namespace adrsph {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 namespace fs = std::filesystem;
 using analysis::InverseGaussian;
 
@@ -480,6 +481,70 @@ TEST(RtdCommand, AppliesTheRunsOverridesAndWritesToOut) {
   EXPECT_TRUE(fs::exists(dir / "report" / "rtd.csv"));
   EXPECT_TRUE(fs::exists(dir / "report" / "rtd.md"));
   EXPECT_FALSE(fs::exists(dir / "run" / "rtd.json"));
+}
+
+// A network with an inert tracer T beside a reacting A: --species T takes T's feed, D and
+// outlet series (outlet_T.csv) and writes rtd_T.*; the first species has no pulse, and the
+// error says which species there are.
+constexpr const char* kNetworkCaseText = R"(name = "rtd_net"
+flow = "prescribed"
+[particles]
+dx = 0.5
+[[species]]
+name = "A"
+D = 10.0
+c_in = 1.0
+[[species]]
+name = "T"
+D = 10.0
+c_in = 2.5
+c_init = 0.5
+[species.feed]
+shape = "pulse"
+t0 = 0.1
+width = 0.05
+base = 0.5
+[[reaction]]
+law = "first_order"
+k = 1.0
+reactants = ["A"]
+[time]
+t_end = 8.0
+stop_when_steady = false
+[output]
+outlet_interval = 0.005
+)";
+
+TEST(RtdCommand, SpeciesOfANetwork) {
+  test::TempDir dir;
+  const fs::path run = dir / "run";
+  fs::create_directories(run);
+  test::write_file(run / "case.toml", kNetworkCaseText);
+  test::write_file(run / "run.json", "{\"status\": \"ok\", \"overrides\": []}\n");
+  write_outlet_csv(run / "outlet_T.csv", model_outlet(cli_case(), 0.005, 8.0));
+  write_outlet_csv(run / "outlet.csv", {{0.0, 1.0, 1.0}, {0.1, 1.0, 1.0}, {0.2, 1.0, 1.0}});
+
+  auto r = test::run_adrsph("rtd run --species T --no-plot", dir.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("# Residence-time distribution: rtd_net (species T)"));
+  EXPECT_THAT(r.out, HasSubstr("| mean residence time t_m [s] | 0.75 | V/Q = L/U = 0.75 |"));
+  EXPECT_THAT(r.out, Not(HasSubstr("the tracer reacts")));  // the reaction is A's
+  const auto j = read_json(run / "rtd_T.json");
+  EXPECT_NEAR(j["mean_residence_time"].get<double>(), 0.75, 1e-4);
+  EXPECT_LT(j["L1"].get<double>(), 1e-6);
+  EXPECT_TRUE(fs::exists(run / "rtd_T.csv"));
+  EXPECT_TRUE(fs::exists(run / "rtd_T.md"));
+  EXPECT_FALSE(fs::exists(run / "rtd.json"));
+
+  r = test::run_adrsph("rtd run --no-plot", dir.path());  // A: a constant feed
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("\"pulse\" or \"table\""));
+  EXPECT_THAT(r.err, HasSubstr("--species NAME takes another of \"A\", \"T\""));
+  r = test::run_adrsph("rtd run --species Q --no-plot", dir.path());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--species Q"));
+  EXPECT_THAT(r.err, HasSubstr("has no species of that name (it has \"A\", \"T\")"));
+  EXPECT_FALSE(fs::exists(run / "rtd.json"));
 }
 
 TEST(RtdCommand, MissingRunDirOrCaseExits2) {

@@ -1,7 +1,9 @@
-// `adrsph rtd RUN_DIR [--out DIR] [--against REF_DIR]`: the residence-time distribution of a
-// tracer-pulse run (docs/rtd.md). Reads the run's case (case.toml with run.json's overrides)
-// and its outlet in time (outlet.csv); writes rtd.csv, rtd.json, rtd.md and rtd.png, and
-// prints rtd.md. With --against, also the transient reference's outlet (REF_DIR/outlet.csv).
+// `adrsph rtd RUN_DIR [--species NAME] [--out DIR] [--against REF_DIR]`: the residence-time
+// distribution of a tracer-pulse run (docs/rtd.md). Reads the run's case (case.toml with
+// run.json's overrides) and its outlet in time (outlet.csv, or outlet_<NAME>.csv for a species
+// of a network other than the first); writes rtd.csv, rtd.json, rtd.md and rtd.png (rtd_<NAME>.*),
+// and prints rtd.md. With --against, also the transient reference's outlet (REF_DIR/outlet.csv).
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -29,7 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct RtdOptions {
-  std::string run_dir, out, against;
+  std::string run_dir, out, against, species;
   bool plot = true;
 };
 
@@ -62,6 +64,42 @@ void write_all(const std::vector<std::pair<fs::path, std::string>>& files) {
     for (const fs::path& tmp : written) fs::remove(tmp, ec);
     throw;
   }
+}
+
+// The case as the RTD of species s sees it: that species alone, as the case's `species`, with
+// the reactions it takes part in (so that a reacting tracer is still warned of). Only the
+// first species has a species.k (the one-species form's reaction); another species' kinetics
+// are all in those reactions, so its k is 0 (its Species holds the unused default).
+Case species_view(const Case& c, int s) {
+  if (c.species_count() == 1) return c;
+  Case v = c;
+  v.species = c.species_at(s);
+  if (s != 0) v.species.k = 0.0;
+  v.more_species.clear();
+  v.reactions.clear();
+  for (const Reaction& r : c.reactions) {
+    const auto takes_part = [s](const std::vector<int>& ids) {
+      return std::find(ids.begin(), ids.end(), s) != ids.end();
+    };
+    if (takes_part(r.reactants) || takes_part(r.products)) v.reactions.push_back(r);
+  }
+  v.name = c.name + " (species " + c.species_at(s).name + ")";
+  return v;
+}
+
+// Index of the species --species names (the first when it is empty), or nullopt.
+std::optional<int> species_index(const Case& c, const std::string& name) {
+  if (name.empty()) return 0;
+  for (int s = 0; s < c.species_count(); ++s)
+    if (c.species_at(s).name == name) return s;
+  return std::nullopt;
+}
+
+std::string species_names(const Case& c) {
+  std::string names;
+  for (int s = 0; s < c.species_count(); ++s)
+    names += (s ? ", \"" : "\"") + c.species_at(s).name + "\"";
+  return names;
 }
 
 void plot_rtd(const fs::path& csv, const fs::path& json, const fs::path& png,
@@ -126,7 +164,6 @@ int run_rtd(const RtdOptions& o) {
                      ": no such directory; give the output directory of `adrsph run` (it holds "
                      "case.toml, run.json and outlet.csv)");
   const fs::path run_json = run_dir / "run.json", case_file = run_dir / "case.toml";
-  const fs::path outlet_csv = run_dir / "outlet.csv";
   if (!fs::exists(run_json, ec))
     return bad_input(run_json.string() +
                      ": not found; RUN_DIR must be the output directory of a finished `adrsph "
@@ -147,9 +184,9 @@ int run_rtd(const RtdOptions& o) {
     return bad_input(case_file.string() +
                      ": not found; RUN_DIR must be the output directory of `adrsph run` (it "
                      "keeps the case file as case.toml)");
-  Case c;
+  Case run_case;
   try {
-    c = load_case(case_file, overrides);
+    run_case = load_case(case_file, overrides);
   } catch (const CaseError& e) {
     // An override names "--set": it came from run.json.
     if (e.file() == "--set") return bad_input(run_json.string() + ": overrides: " + e.what());
@@ -157,10 +194,22 @@ int run_rtd(const RtdOptions& o) {
   }
   const std::string case_name =
       overrides.empty() ? case_file.string() : case_file.string() + " (with run.json's --set)";
+  const std::optional<int> s = species_index(run_case, o.species);
+  if (!s)
+    return bad_input("--species " + o.species + ": " + case_name +
+                     " has no species of that name (it has " + species_names(run_case) + ")");
+  // The first species keeps the file names of a one-species run; another gets _<name>.
+  const std::string suffix = *s == 0 ? std::string() : "_" + run_case.species_at(*s).name;
+  const Case c = species_view(run_case, *s);
+  const fs::path outlet_csv = run_dir / ("outlet" + suffix + ".csv");
   try {
     analysis::check_rtd_feed(c);
   } catch (const analysis::RtdInputError& e) {
-    return bad_input(case_name + ": " + e.what());
+    std::string hint;
+    if (run_case.species_count() > 1)
+      hint = " (the RTD of species \"" + run_case.species_at(*s).name +
+             "\"; --species NAME takes another of " + species_names(run_case) + ")";
+    return bad_input(case_name + ": " + e.what() + hint);
   }
   if (!fs::exists(outlet_csv, ec))
     return bad_input(outlet_csv.string() +
@@ -189,7 +238,8 @@ int run_rtd(const RtdOptions& o) {
   const std::string md = analysis::rtd_markdown(r, c, a);
   std::cout << md;
   const fs::path out = o.out.empty() ? run_dir : fs::path(o.out);
-  const fs::path csv = out / "rtd.csv", json = out / "rtd.json", md_file = out / "rtd.md";
+  const fs::path csv = out / ("rtd" + suffix + ".csv"), json = out / ("rtd" + suffix + ".json"),
+                 md_file = out / ("rtd" + suffix + ".md");
   try {
     fs::create_directories(out);
     write_all({{csv, analysis::rtd_csv(r, a)}, {json, analysis::rtd_json(r, c, a)}, {md_file, md}});
@@ -198,7 +248,8 @@ int run_rtd(const RtdOptions& o) {
     return kExitIoError;
   }
   std::printf("\nwrote %s, %s and %s\n", md_file.c_str(), json.c_str(), csv.c_str());
-  if (o.plot) plot_rtd(csv, json, out / "rtd.png", "residence-time distribution: " + c.name);
+  if (o.plot)
+    plot_rtd(csv, json, out / ("rtd" + suffix + ".png"), "residence-time distribution: " + c.name);
   return kExitOk;
 }
 
@@ -225,6 +276,11 @@ Command register_rtd(CLI::App& app) {
   auto o = std::make_shared<RtdOptions>();
   sub->add_option("run_dir", o->run_dir, "Run directory (adrsph run --out)")->required();
   sub->add_option("--out", o->out, "Output directory (default RUN_DIR)")->check(kNonEmptyPath);
+  sub->add_option("--species", o->species,
+                  "The species of a network ([[species]] tables) whose RTD to take, by name "
+                  "(default the first): its feed, D and reactions, its outlet series "
+                  "outlet_<NAME>.csv (outlet.csv for the first), and the outputs rtd_<NAME>.* "
+                  "(rtd.* for the first)");
   sub->add_option("--against", o->against,
                   "Compare with the transient finite-volume reference of the case: the output "
                   "directory of `adrsph reference CASE --transient` (its outlet.csv must cover "
