@@ -16,15 +16,24 @@ std::vector<double> flatten(const ProbeTable& p) {
     v.insert(v.end(), a->begin(), a->end());
   return v;
 }
-// C(tau) of a batch of the case's kinetics from c0 (reaction_kinetics.hpp), tabulated on
-// log-spaced tau from 1e-6 s to 1e6 s and interpolated: the bound below needs it for every
-// streamline's residence time L / u(y), arbitrarily long near the walls.
-class BatchTable {
+// The residence times at which the bounds below tabulate a batch of the case's kinetics:
+// log-spaced from 1e-6 s to 1e6 s, since every streamline's residence time L / u(y) is needed,
+// arbitrarily long near the walls.
+struct TauGrid {
+  static constexpr int kPoints = 1201;
+  static constexpr double kTau0 = 1e-6;
+  static constexpr double kRatio = 1.023292992280754;  // 10^(12 / 1200): 1e-6 .. 1e6 s
+  static double grid_tau(int i) { return kTau0 * std::pow(kRatio, i); }
+};
+
+// C(tau) of a batch of the case's kinetics from c0 (reaction_kinetics.hpp) on TauGrid,
+// interpolated linearly in log tau.
+class BatchTable : TauGrid {
  public:
   BatchTable(const Case& c, double c0) {
     double conc = c0, tau = 0.0;
     for (int i = 0; i < kPoints; ++i) {
-      const double next = kTau0 * std::pow(kRatio, i);
+      const double next = grid_tau(i);
       conc = batch_concentration(c, conc, next - tau);
       tau = next;
       values_[i] = conc;
@@ -40,9 +49,6 @@ class BatchTable {
   }
 
  private:
-  static constexpr int kPoints = 1201;
-  static constexpr double kTau0 = 1e-6;
-  static constexpr double kRatio = 1.023292992280754;  // 10^(12 / 1200): 1e-6 .. 1e6 s
   std::array<double, kPoints> values_{};
   double c0_ = 0.0;
 };
@@ -88,13 +94,14 @@ class KineticsBound {
 
 // The same bound for a network of several species (steady_state.hpp, condition 1): the batch
 // state B(tau) of all species together (batch_state), from the inlet values and from the
-// initial ones, tabulated on the log-spaced tau of BatchTable. A product need not decrease
+// initial ones, tabulated on TauGrid (and tau = 0). A product need not decrease
 // in tau, so the second term is |B(t; in) - B(L/u; in)|. Each species' bound is relative to
 // its steady outlet section average, or to 1% of the concentration scale for a species that
 // leaves with less; the largest over the species counts.
-class NetworkBound {
+class NetworkBound : TauGrid {
  public:
-  explicit NetworkBound(const Case& c) : c_(c), scale_(concentration_scale(c)) {
+  explicit NetworkBound(const Case& c)
+      : c_(c), zone_free_(without_zones(c)), scale_(concentration_scale(c)) {
     std::vector<double> in, init;
     for (int s = 0; s < c.species_count(); ++s) {
       in.push_back(c.species_at(s).c_in);
@@ -105,9 +112,9 @@ class NetworkBound {
     from_initial_.push_back(init);
     taus_.push_back(0.0);
     for (int i = 0; i < kPoints; ++i) {
-      const double next = kTau0 * std::pow(kRatio, i);
-      in = batch_state(c, in, next - tau);
-      init = batch_state(c, init, next - tau);
+      const double next = grid_tau(i);
+      in = batch_state(zone_free_, in, next - tau);
+      init = batch_state(zone_free_, init, next - tau);
       tau = next;
       taus_.push_back(tau);
       from_inlet_.push_back(in);
@@ -143,10 +150,15 @@ class NetworkBound {
     return table[i - 1][static_cast<std::size_t>(s)] +
            w * (table[i][static_cast<std::size_t>(s)] - table[i - 1][static_cast<std::size_t>(s)]);
   }
-  static constexpr int kPoints = 1201;
-  static constexpr double kTau0 = 1e-6;
-  static constexpr double kRatio = 1.023292992280754;  // as BatchTable
+  // The case with the zones of its [[reaction]] tables left out (factor 1 everywhere), copied
+  // once for the 2 x 1201 batch steps.
+  static Case without_zones(const Case& c) {
+    Case plain = c;
+    for (Reaction& r : plain.reactions) r.zones.clear();
+    return plain;
+  }
   const Case& c_;
+  Case zone_free_;
   double scale_;
   std::vector<double> taus_;
   std::vector<std::vector<double>> from_inlet_, from_initial_;

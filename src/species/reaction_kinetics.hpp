@@ -40,7 +40,8 @@ double bimolecular_extent(double k_eff, double a0, double b0, double t);
 void react_network(const Case& c, double x, double y, std::span<double> conc, double dt);
 
 // The concentrations after time t of a batch of the case's network from `c0` (one per
-// species), zones left out: react_network over 1000 sub-steps.
+// species), at the point (0, 0): react_network over 1000 sub-steps. A bound that leaves the
+// zones out passes a copy of the case without them.
 std::vector<double> batch_state(const Case& c, std::vector<double> c0, double t);
 
 // C after time t of a batch of the case's kinetics from C0 (species.k and every [[reaction]],
