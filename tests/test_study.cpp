@@ -287,6 +287,13 @@ TEST(StudyCli, TinyStudyRunsOnceAndResumes) {
     EXPECT_THAT(r.out, HasSubstr("(e.g. t-pe100000)"));
     EXPECT_TRUE(fs::exists(dir / "kept_report" / "runs" / "t-pe100000" / "run.json"));
     fs::remove_all(runs);
+    // --only one run: the other, restored, still gets its reference, which the report needs.
+    r = test::run_adrsph("study tiny.toml --resume --only t-pe1000 --report kept_report",
+                         dir.path());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_THAT(r.out, HasSubstr("t-pe100000: done, restored from the report"));
+    EXPECT_TRUE(fs::exists(runs / "reference" / "pe100000" / "stations.csv"));
+    fs::remove_all(runs);
     r = test::run_adrsph("study tiny.toml --resume --report kept_report", dir.path());
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
     EXPECT_THAT(r.out, HasSubstr("t-pe1000: done, restored from the report"));

@@ -72,6 +72,18 @@ def rate_law(keys, reactions):
     return lambda c: k1 * c + sum(f(c) for f in laws)
 
 
+def density_drop(nu, u_max, length, half_width, c0):
+    """g = 2 nu u_max L / (R^2 c0^2): the fraction by which the density of the WCSPH flow falls
+    from inlet to outlet (docs/compressibility.md)."""
+    return 2.0 * nu * u_max * length / (half_width ** 2 * c0 ** 2)
+
+
+def first_order_closed_form(g, k, x, length, u_mean):
+    """dC / C at x for first-order kinetics to first order in g (docs/compressibility.md): the
+    dilution -g x / L, offset by the shorter time to react, (k x / u) g x / (2 L)."""
+    return -g * x / length + (k * x / u_mean) * g * x / (2.0 * length)
+
+
 def streamline(rate, c_in, u_mean, g, length, stations, steps=20000):
     """C at the stations along the streamline (classical Runge-Kutta in s)."""
     def rhs(s, c):
@@ -107,7 +119,7 @@ def estimate(keys, reactions):
     u_max = 2.0 * number("fluid.u_bulk")
     c0 = number("fluid.c0_factor") * u_max
     length, half = number("geometry.length"), number("geometry.half_width")
-    g = 2.0 * number("fluid.nu") * u_max * length / (half ** 2 * c0 ** 2)
+    g = density_drop(number("fluid.nu"), u_max, length, half, c0)
     rate = rate_law(keys, reactions)
     xs = [x for x in STATIONS if x <= length]
     u_mean = 2.0 * u_max / 3.0
@@ -138,7 +150,7 @@ def self_test():
     rel, _, g = estimate(keys, [])
     check(f"g = 0.006 for the reactor (got {g:.6f})", abs(g - 0.006) < 1e-12)
     for x, v in rel.items():
-        closed = -g * x / 100.0 + (1.462 * x / (400.0 / 3.0)) * g * x / 200.0
+        closed = first_order_closed_form(g, 1.462, x, 100.0, 400.0 / 3.0)
         check(f"first order at x = {x:g}: {100 * v:+.4f}% against the closed form "
               f"{100 * closed:+.4f}%", abs(v - closed) < 1e-4)
     # No reaction: pure dilution, C u = const along the streamline, so C / C_inc = 1 / (1 + g x/L).

@@ -21,7 +21,10 @@ and reference.h5, and writes into REPORT_DIR (Markdown, CSV and PNG only):
                             the same Pe and dx, their difference (the flow's part) and the
                             weak-compressibility estimate (docs/compressibility.md)
   errors_pe<Pe>.png         relative error along the probe lines (the paper's figures 3-5)
-  contours_pe<Pe>.png       steady contours, finest modern run against the reference (figure 2)
+  contours_pe<Pe>.png       steady contours against the reference (figure 2): the finest done
+                            run with fields.h5, modern preferred; a plot drawn on another
+                            machine is kept while its run is done and none here ranks above it
+  contours.csv              Pe, run: the run each contours_pe<Pe>.png shows
   cost_vs_error.png         outlet and worst station error against wall time, all runs
   history_pe<Pe>.png        C at the outlet relative to the reference against t (steadiness)
   runs/<name>/              run.json (case_file made relative), probes.csv, stations.csv,
@@ -43,6 +46,9 @@ import re
 import shutil
 import sys
 import tempfile
+
+# tools/compressibility_estimate.py: the density drop and the first-order closed form
+from compressibility_estimate import density_drop, first_order_closed_form
 
 try:
     import numpy as np
@@ -265,6 +271,7 @@ class Run:
         self.history = read_csv_columns(os.path.join(self.dir, "history.csv"))
         self.has_fields = os.path.isfile(os.path.join(self.dir, "fields.h5"))
         self.err = {x: math.nan for x in STATIONS}
+        self.has_ref = False  # compared: its reference was found (compute_errors)
         self.line_err = {}
         self.max_line_err = math.nan
 
@@ -278,6 +285,7 @@ class Run:
     def compute_errors(self, ref):
         if ref is None:
             return
+        self.has_ref = True
         for x in STATIONS:
             self.err[x] = rel_err(self.station_c(x), ref.station(x))
         if self.probes is not None and "x_mm" in self.probes:
@@ -426,6 +434,8 @@ def section_table3(runs, dx, with_targets):
 def target_verdict(run, scheme, paper, misses, pe):
     if run is None or run.state != DONE:
         return "-" if run is None else run.state
+    if not run.has_ref:  # not a miss: nothing to measure it against in RUNS_DIR/reference
+        return f"not compared: no reference of Pe = {fmt_pe(pe)}"
     if scheme == "modern":
         limits = [MODERN_FINE_TARGET] * 3
         what = "<= 0.5%"
@@ -667,11 +677,11 @@ def compressibility_estimate(run, base):
     if not math.isfinite(k):
         k = num(keys.get("species.k"))
     u_max = 2.0 * u_bulk  # the case files' relation (cases/README.md)
-    g = 2.0 * nu * u_max * length / (half ** 2 * (c0f * u_max) ** 2)
+    g = density_drop(nu, u_max, length, half, c0f * u_max)
     u_mean = 2.0 * u_max / 3.0
     if not all(math.isfinite(v) for v in (g, k)):
         return {}
-    return {x: -g * x / length + (k * x / u_mean) * g * x / (2.0 * length) for x in STATIONS}
+    return {x: first_order_closed_form(g, k, x, length, u_mean) for x in STATIONS}
 
 
 def spct(v):
@@ -857,13 +867,21 @@ def plot_history(runs, pe, ref, out):
     return True
 
 
-def plot_contours_for(runs, pe, ref, out):
-    """Finest done modern run with fields.h5 (cold paper run preferred) against the reference."""
-    cands = [r for r in runs if r.done and r.pe == pe and r.scheme == "modern" and
+def contour_rank(r):
+    """Which run figure 2 shows, lowest first: the finest, the modern scheme, the cold start."""
+    return (r.dx, r.scheme != "modern", r.kind != "paper")
+
+
+def plot_contours_for(runs, pe, ref, out, better_than=None):
+    """The best-ranked done WCSPH run with fields.h5 against the reference, if it ranks above
+    `better_than` (a run whose plot is already there)."""
+    cands = [r for r in runs if r.done and r.pe == pe and r.scheme in SCHEMES and
              r.kind in ("paper", "warm") and r.has_fields and r.dx is not None]
     if not cands:
-        return None, "no done modern run with fields.h5"
-    run = min(cands, key=lambda r: (r.dx, r.kind != "paper"))
+        return None, "no done WCSPH run with fields.h5 in the runs directory"
+    run = min(cands, key=contour_rank)
+    if better_than is not None and contour_rank(better_than) < contour_rank(run):
+        return None, f"{better_than.name} ranks above {run.name}"
     try:
         sys.path.insert(0, TOOLS_DIR)
         import plot_contours  # noqa: E402  (h5py)
@@ -951,12 +969,18 @@ def write_report(runs_dir, report_dir, warm_tol=0.0005, contours=True):
               "conventional cell.\n")
     md.append(t3)
     fine_done = [r for r in runs if r.kind == "paper" and r.dx == FINE and r.done]
+    uncompared = [r.name for r in fine_done if not r.has_ref]
     if misses:
         md.append("\n**Targets missed:**\n\n" + "\n".join(f"- {m}" for m in misses) + "\n")
-    elif fine_done:
-        md.append("\nEvery done fine run meets its target.\n")
-    else:
+    elif not fine_done:
         md.append("\nNo fine cold-start run is done yet: the targets cannot be judged.\n")
+    elif not uncompared:
+        md.append("\nEvery done fine run meets its target.\n")
+    elif len(uncompared) < len(fine_done):
+        md.append("\nEvery done fine run that has its reference meets its target.\n")
+    if uncompared:
+        md.append("\nNot compared, no reference in the runs directory (`adrsph study --resume` "
+                  "solves it): " + ", ".join(uncompared) + ".\n")
 
     # 2. coarse and mid, orders
     md.append("## 2. Coarse (dx = 0.5 mm) and mid (dx = 0.25 mm) resolution, convergence\n")
@@ -1026,20 +1050,40 @@ def write_report(runs_dir, report_dir, warm_tol=0.0005, contours=True):
     if not any_plot:
         md.append("No done run with a reference yet.\n")
 
-    # 4. contours
+    # 4. contours. fields.h5 stays on the machine that made a run (the report copies no HDF5),
+    # so a plot drawn there is kept, with the run it shows in contours.csv, as long as that run
+    # is still done in the study and no run with fields.h5 is here to draw it again.
     md.append("## 4. Steady contours against the reference (the paper's figure 2)\n")
+    drawn_file = os.path.join(report_dir, "contours.csv")
+    drawn = {}
+    if os.path.isfile(drawn_file):
+        with open(drawn_file, newline="") as fh:
+            drawn = {pe_key(row["Pe"]): row["run"] for row in csv.DictReader(fh)}
+    by_name = {r.name: r for r in runs}
     for pe in sorted({r.pe for r in runs if r.pe is not None}):
         f = f"contours_pe{fmt_pe(pe)}.png"
         if not contours:
             md.append(f"Pe = {fmt_pe(pe)}: contours not drawn (--no-contours).\n")
             continue
-        run, why = plot_contours_for(runs, pe, refs.get(pe), os.path.join(report_dir, f))
+        earlier = by_name.get(drawn.get(pe, ""))
+        if not (earlier is not None and earlier.done and earlier.dx is not None and
+                os.path.isfile(os.path.join(report_dir, f))):
+            earlier = None
+        run, why = plot_contours_for(runs, pe, refs.get(pe), os.path.join(report_dir, f),
+                                     better_than=earlier)
+        kept = ""
+        if run is None and earlier is not None:
+            run, kept = earlier, ", drawn when its fields.h5 was on disk"
         if run is not None:
+            drawn[pe] = run.name
             md.append(f"Pe = {fmt_pe(pe)}, `{run.name}` (dx = {run.dx:g}"
-                      f"{', warm start' if run.kind == 'warm' else ''}): red dashed SPH, black "
-                      f"reference.\n\n![Contours, Pe = {fmt_pe(pe)}]({f})\n")
+                      f"{', warm start' if run.kind == 'warm' else ''}{kept}): red dashed SPH, "
+                      f"black reference.\n\n![Contours, Pe = {fmt_pe(pe)}]({f})\n")
         else:
+            drawn.pop(pe, None)
             md.append(f"Pe = {fmt_pe(pe)}: {why}.\n")
+    if contours:
+        write_csv(drawn_file, ["Pe", "run"], [[fmt_pe(pe), name] for pe, name in sorted(drawn.items())])
 
     # 5. run time against error
     md.append("## 5. Run time against error\n")
@@ -1317,6 +1361,32 @@ def self_test(keep=None):
                    if l.startswith("| 1000 | modern |")]
         check(coarse3 and "pe1000_modern_dx0.5 " in coarse3[0] + " ",
               "the c0 run taken for the paper's coarse cell")
+        # Written again where the runs' fields.h5 are gone (another machine), the report keeps
+        # the contour plot drawn earlier and says which run it shows.
+        # A coarser run that still has its fields does not replace it.
+        if importlib.util.find_spec("h5py") is not None:
+            coarse = os.path.join(runs_dir, "pe1000_modern_dx0.5", "fields.h5")
+            check(os.path.isfile(coarse), "no fields.h5 in the coarse synthetic run")
+            for d, _, fs in os.walk(runs_dir):
+                for f in fs:
+                    if f == "fields.h5" and os.path.join(d, f) != coarse:
+                        os.remove(os.path.join(d, f))
+            write_report(runs_dir, report_dir)
+            again = open(os.path.join(report_dir, "README.md")).read()
+            check("`pe1000_modern_dx0.125` (dx = 0.125, drawn when its fields.h5 was on disk)"
+                  in again and "](contours_pe1000.png)" in again,
+                  "the earlier contour plot was dropped or replaced by a coarser run's")
+        # Without the reference of its Pe a done run is not compared, not a missed target.
+        shutil.rmtree(os.path.join(runs_dir, "reference", "pe10"))
+        bare_dir = os.path.join(root, "report_without_pe10")
+        write_report(runs_dir, bare_dir)
+        bare = open(os.path.join(bare_dir, "README.md")).read().split("## 2.")[0]
+        conv10 = [l for l in bare.splitlines() if l.startswith("| 10 | conventional |")]
+        check(conv10 and "not compared: no reference of Pe = 10" in conv10[0],
+              f"a run without reference: {conv10}")
+        check("**NO**" not in bare, "a run without reference counted as a missed target")
+        check("Not compared, no reference in the runs directory" in bare and
+              "Every done fine run meets" not in bare, "the note on runs without reference")
         if failures:
             print("study_report self-test FAILED:\n  " + "\n  ".join(failures))
             return 1

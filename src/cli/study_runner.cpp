@@ -342,11 +342,13 @@ int StudyRunner::run() {
   active_ = &active;
   write_json();
 
-  // References first (cheap), one per Pe of the selected runs, then the compares of runs
-  // already done.
+  // References first (cheap), one per Pe of the selected runs (for their compares) and of the
+  // runs already done (the report compares every done run, restored ones included), then the
+  // compares of the selected runs already done.
   std::set<std::string> labels;
   for (std::size_t i = 0; i < runs_.size() && !stopping(); ++i) {
-    if (!s_.selected[i] || !labels.insert(R(i).pe_label).second) continue;
+    const bool needed = s_.selected[i] || run_state(files(i)) == RunState::done;
+    if (!needed || !labels.insert(R(i).pe_label).second) continue;
     ensure_reference(i);
     if (stop_requested()) interrupted_ = true;
   }
