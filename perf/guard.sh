@@ -11,7 +11,8 @@
 # only those steps, one dump per variant. Measured per variant:
 #   <variant>.step        every instruction executed inside the 10 steps
 #   <variant>.force_pass  inclusive count of the fused force pass (functions named
-#                         interaction_pass<...>, the largest inclusive count among them)
+#                         interaction_pass<...> or interaction_pass_with<...>, the largest
+#                         inclusive count among them)
 # A count more than `tolerance` above the baseline fails the guard. Counts below the
 # baseline pass (refresh the baseline after an optimisation so that the gain is kept).
 # See perf/README.md for the method and why 10% is the tolerance.
@@ -91,7 +92,8 @@ for path in sorted(glob.glob(os.path.join(work, "cg.out.*[0-9]"))):
     with open(path + ".annotate") as f:
         for line in f:
             m = re.match(r"\s*([\d,]+)\s+(?:\([^)]*\)\s+)?(.*)$", line)
-            if m and "interaction_pass<" in m.group(2):
+            # interaction_pass<...> and the body it runs, interaction_pass_with<...>
+            if m and re.search(r"interaction_pass(_with)?<", m.group(2)):
                 force = max(force, int(m.group(1).replace(",", "")))
     if force == 0:
         sys.exit(f"guard: no function named interaction_pass<...> in the {name} profile "

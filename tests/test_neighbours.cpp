@@ -2,10 +2,12 @@
 // displacement monitor never lets a pair within the kernel support go missing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "neighbours/cell_grid.hpp"
 #include "neighbours/displacement_monitor.hpp"
@@ -55,9 +57,15 @@ struct Cloud {
   }
   std::set<std::pair<std::uint32_t, std::uint32_t>> listed() const {
     std::set<std::pair<std::uint32_t, std::uint32_t>> s;
-    for (std::size_t i = 0; i < x.size(); ++i)
-      for (std::uint32_t k = list.begin(i); k < list.end(i); ++k)
-        if (list.data()[k] != x.size()) s.insert({static_cast<std::uint32_t>(i), list.data()[k]});
+    list.with_indices([&](auto form) {
+      std::vector<std::uint32_t> buffer(NeighbourList::kMaxRow);
+      for (std::size_t i = 0; i < x.size(); ++i) {
+        const std::uint32_t kb = list.begin(i), ke = list.end(i);
+        const std::uint32_t* row = form.row(i, kb, ke, buffer.data());
+        for (std::uint32_t k = 0; k < ke - kb; ++k)
+          if (row[k] != x.size()) s.insert({static_cast<std::uint32_t>(i), row[k]});
+      }
+    });
     return s;
   }
   double distance(std::size_t i, std::size_t j) const {
@@ -84,6 +92,78 @@ TEST(NeighbourList, HoldsExactlyThePairsWithinTheCutoffPaddedToWholeVectors) {
   EXPECT_EQ(within, listed.size());
   // About pi (3.3)^2 = 34 neighbours per interior particle on this lattice.
   EXPECT_NEAR(cloud.list.mean_neighbours(), 31.0, 3.0);
+}
+
+// Entry k of particle i, whatever the form of the list.
+std::vector<std::uint32_t> entries(const NeighbourList& list, std::size_t n) {
+  std::vector<std::uint32_t> e;
+  list.with_indices([&](auto form) {
+    std::vector<std::uint32_t> buffer(NeighbourList::kMaxRow);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t kb = list.begin(i), ke = list.end(i);
+      const std::uint32_t* row = form.row(i, kb, ke, buffer.data());
+      e.insert(e.end(), row, row + (ke - kb));
+    }
+  });
+  return e;
+}
+
+TEST(NeighbourList, SixteenBitOffsetsListWhatThirtyTwoBitIndicesList) {
+  Cloud cloud(13);
+  const std::size_t n = cloud.x.size();
+  ASSERT_FALSE(cloud.list.wide());  // a channel: every offset fits 16 bits
+  const auto narrow = entries(cloud.list, n);
+  const std::size_t narrow_bytes = cloud.list.bytes();
+  NeighbourList wide;
+  wide.build(cloud.grid, cloud.x, cloud.y, kCutoff, static_cast<std::uint32_t>(n),
+             NeighbourList::Width::wide);
+  ASSERT_TRUE(wide.wide());
+  EXPECT_EQ(entries(wide, n), narrow);  // entry by entry, padding (index n) included
+  // 2 bytes an entry instead of 4, the row starts (4 bytes a particle) alike.
+  const double per_entry = static_cast<double>(narrow.size());
+  EXPECT_NEAR(static_cast<double>(wide.bytes() - narrow_bytes) / per_entry, 2.0, 0.2);
+}
+
+// A square of 360 x 360 particles: the Morton order puts some neighbours more than 32,767
+// places apart (across the middle of the square), so the list takes 32-bit indices, and still
+// holds exactly the pairs within the cut-off.
+TEST(NeighbourList, FallsBackToIndicesWhereAnOffsetDoesNotFitSixteenBits) {
+  const int side = 360;
+  const double extent = side * kDx;
+  CellGrid grid(-1.0, extent + 1.0, -1.0, extent + 1.0, kCutoff);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> jitter(-0.2 * kDx, 0.2 * kDx);
+  std::vector<double> x0, y0;
+  for (int a = 0; a < side; ++a)
+    for (int b = 0; b < side; ++b) {
+      x0.push_back((a + 0.5) * kDx + jitter(rng));
+      y0.push_back((b + 0.5) * kDx + jitter(rng));
+    }
+  std::vector<std::uint32_t> order, outside;
+  grid.sort(x0, y0, order, outside);
+  ASSERT_TRUE(outside.empty());
+  std::vector<double> x, y;
+  for (std::uint32_t k : order) x.push_back(x0[k]), y.push_back(y0[k]);
+  const std::size_t n = x.size();
+  NeighbourList list;
+  list.build(grid, x, y, kCutoff, static_cast<std::uint32_t>(n));
+  ASSERT_TRUE(list.wide());
+  const auto e = entries(list, n);
+  std::size_t farthest = 0;
+  for (std::size_t i = 0; i < n; i += 97) {  // every 97th particle against all the others
+    std::set<std::uint32_t> listed;
+    for (std::uint32_t k = list.begin(i); k < list.end(i); ++k)
+      if (e[k] != n) listed.insert(e[k]);
+    std::set<std::uint32_t> within;
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i &&
+          (x[i] - x[j]) * (x[i] - x[j]) + (y[i] - y[j]) * (y[i] - y[j]) < kCutoff * kCutoff) {
+        within.insert(static_cast<std::uint32_t>(j));
+        farthest = std::max(farthest, j > i ? j - i : i - j);
+      }
+    ASSERT_EQ(listed, within) << "particle " << i;
+  }
+  EXPECT_GT(farthest, static_cast<std::size_t>(NeighbourList::kMaxOffset));  // the case tested
 }
 
 TEST(DisplacementMonitor, UniformTranslationDoesNotAgeTheLists) {

@@ -2,7 +2,9 @@
 
 namespace adrsph {
 
-void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
+namespace {
+template <class Neighbours>
+void extrapolate_with(ParticleStore& s, const PassContext& ctx, const Neighbours form) {
   const std::size_t n = s.size();
   const double* x = s.x.data();
   const double* y = s.y.data();
@@ -11,7 +13,6 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
   const double* vy = s.vy.data();
   const std::uint8_t* kind = s.kind.data();
   const float* side = s.fluid_side.data();
-  const std::uint32_t* nb = ctx.neighbours.data();
   const TaitEos eos = ctx.phys.eos;
   const QuinticKernel kernel = ctx.kernel;  // local copies: see interaction_pass.hpp
   const double mass = s.mass;
@@ -35,8 +36,11 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
     // Single precision, like the other neighbour passes (shepard averages of float p).
     float sw = 0.0f, sp = 0.0f, su = 0.0f, sv = 0.0f;
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
+    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
+    const std::uint32_t len = ke - kb;
 #pragma omp simd reduction(+ : sw, sp, su, sv)
-    for (std::uint32_t k = kb; k < ke; ++k) {
+    for (std::uint32_t k = 0; k < len; ++k) {
       const std::uint32_t j = nb[k];
       const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
       // Fluid and outlet particles are the "fluid side" a boundary particle samples (a float
@@ -58,6 +62,12 @@ void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
       s.vy[i] = sw > 0.0f ? -double(sv) / sw : 0.0;
     }
   }
+}
+
+}  // namespace
+
+void extrapolate_to_boundaries(ParticleStore& s, const PassContext& ctx) {
+  ctx.neighbours.with_indices([&](auto form) { extrapolate_with(s, ctx, form); });
 }
 
 }  // namespace adrsph

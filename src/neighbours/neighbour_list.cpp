@@ -1,46 +1,78 @@
 #include "neighbours/neighbour_list.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <type_traits>
 
 namespace adrsph {
 
 namespace {
 constexpr std::integral_constant<int, 1> kOneRing{};  // the 3x3 cells around a particle
+
+// Growing past the capacity adds ~3% headroom, not std::vector's doubling (the lists are the
+// second largest block of a run, after the particle arrays); the other form is released.
+template <class T, class U>
+void size_entries(std::vector<T>& used, std::vector<U>& other, std::size_t total) {
+  if (total > used.capacity()) used.reserve(total + total / 32);
+  used.resize(total);
+  std::vector<U>().swap(other);
+}
 }  // namespace
 
 void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
-                          std::span<const double> y, double cutoff, std::uint32_t padding_index) {
+                          std::span<const double> y, double cutoff, std::uint32_t padding_index,
+                          Width width) {
   const std::size_t n = padding_index;  // real particles are [0, n)
   const double rc2 = cutoff * cutoff;
-  count_.assign(n, 0);
   offset_.assign(n + 1, 0);
   std::size_t real_total = 0;
-#pragma omp parallel for schedule(static) reduction(+ : real_total)
+  std::int64_t far = 0;       // the largest |j - i| of a listed pair
+  std::uint32_t longest = 0;  // the longest padded row
+#pragma omp parallel for schedule(static) reduction(+ : real_total) reduction(max : far, longest)
   for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t cnt = 0;
+    std::uint32_t cnt = 0, lo = static_cast<std::uint32_t>(i), hi = lo;
     const double xi = x[i], yi = y[i];
     grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
       const double dx = xi - x[j], dy = yi - y[j];
-      cnt += (j != i && dx * dx + dy * dy < rc2) ? 1u : 0u;
+      const bool near = j != i && dx * dx + dy * dy < rc2;
+      cnt += near ? 1u : 0u;
+      if (near) lo = std::min(lo, j), hi = std::max(hi, j);
     });
-    count_[i] = cnt;
+    offset_[i + 1] = (cnt + kPad - 1) / kPad * kPad;  // padded count, summed below
+    longest = std::max(longest, offset_[i + 1]);
     real_total += cnt;
+    const auto ii = static_cast<std::int64_t>(i);
+    far = std::max({far, ii - static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi) - ii});
   }
-  for (std::size_t i = 0; i < n; ++i)
-    offset_[i + 1] = offset_[i] + (count_[i] + kPad - 1) / kPad * kPad;
-  // Growing past the capacity adds ~3% headroom, not std::vector's doubling (the lists are
-  // the second largest block of a run, after the particle arrays).
-  if (offset_[n] > index_.capacity()) index_.reserve(offset_[n] + offset_[n] / 32);
-  index_.resize(offset_[n]);
+  for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
+  wide_ = width == Width::wide || far > kMaxOffset || longest > kMaxRow;
+  padding_ = padding_index;
+  // Fill with entry(i, j) (the form's value of neighbour j of i) and pad.
+  auto fill = [&](auto* entries, auto entry, auto pad) {
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t k = offset_[i];
-    const double xi = x[i], yi = y[i];
-    grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
-      const double dx = xi - x[j], dy = yi - y[j];
-      if (j != i && dx * dx + dy * dy < rc2) index_[k++] = j;
-    });
-    for (; k < offset_[i + 1]; ++k) index_[k] = padding_index;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint32_t k = offset_[i];
+      const double xi = x[i], yi = y[i];
+      grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
+        const double dx = xi - x[j], dy = yi - y[j];
+        if (j != i && dx * dx + dy * dy < rc2) entries[k++] = entry(i, j);
+      });
+      for (; k < offset_[i + 1]; ++k) entries[k] = pad;
+    }
+  };
+  if (wide_) {
+    size_entries(index_, offset16_, offset_[n]);
+    fill(
+        index_.data(), [](std::size_t, std::uint32_t j) { return j; }, padding_index);
+  } else {
+    size_entries(offset16_, index_, offset_[n]);
+    fill(
+        offset16_.data(),
+        [](std::size_t i, std::uint32_t j) {
+          return static_cast<std::int16_t>(static_cast<std::int64_t>(j) -
+                                           static_cast<std::int64_t>(i));
+        },
+        kPaddingOffset);
   }
   mean_ = n ? static_cast<double>(real_total) / static_cast<double>(n) : 0.0;
 }

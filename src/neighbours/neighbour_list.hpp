@@ -1,10 +1,21 @@
 // Cached neighbour lists in CSR form, built from the cell grid with a cut-off slightly above
 // the kernel support (3h + skin) and reused until particles may have moved skin/2.
-// Each particle's list is padded to a multiple of kPad with the padding particle's index,
-// so the inner loops run whole SIMD vectors without a scalar tail.
+// Each particle's list is padded to a multiple of kPad with the padding particle, so the inner
+// loops run whole SIMD vectors without a scalar tail.
+//
+// Entries are 16-bit offsets j - i where every pair allows it, 32-bit indices otherwise. The
+// particles are sorted along a Morton curve, so a neighbour is close to i in the arrays too:
+// in the reactor channel the largest offset is 1,312 / 2,330 / 8,691 at dx = 0.5 / 0.25 /
+// 0.125 mm, and the lists take half the bytes (perf/README.md, section 3.9). A scene where
+// some pair is farther apart in the order (the channel at dx = 0.0625 mm: 33,537; a square
+// domain of more than ~65,000 particles) gets 32-bit indices instead, decided at
+// each build (and one with a row longer than kMaxRow entries). The passes see either form
+// through one call, `with_indices`, taken once per pass outside its loops: the loop body is
+// compiled for each form and carries no branch on it.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -15,24 +26,86 @@ namespace adrsph {
 class NeighbourList {
  public:
   static constexpr std::uint32_t kPad = 8;
+  // The 16-bit entry that stands for the padding particle (no real offset takes it).
+  static constexpr std::int16_t kPaddingOffset = std::numeric_limits<std::int16_t>::min();
+  static constexpr std::int32_t kMaxOffset = std::numeric_limits<std::int16_t>::max();
+
+  enum class Width { automatic, wide };  // wide: 32-bit indices whatever the offsets
+
+  // The most entries a particle may have in the 16-bit form (a row is expanded into a buffer
+  // of this size on the stack); a scene with a longer row gets the 32-bit form.
+  static constexpr std::uint32_t kMaxRow = 512;
+
+  // The two forms. A pass takes, for each particle i, row(i, kb, ke, buffer): the indices of
+  // its entries [kb, ke) as a plain array, then runs its pair loop over that array. The 32-bit
+  // form returns its own entries; the 16-bit form expands i + offset into the buffer (one
+  // short vector loop). The pair loops are thus the same code for both forms: g++ 12 does not
+  // vectorise a pair loop that reads 16-bit entries itself (it picks 16 lanes from them, and
+  // has no gather of 16 doubles), which ran 2.2x the instructions (perf guard).
+  // 16-bit form: i + offset, or the padding particle.
+  struct Offsets {
+    const std::int16_t* entries;
+    std::uint32_t padding;
+    const std::uint32_t* row(std::size_t i, std::uint32_t kb, std::uint32_t ke,
+                             std::uint32_t* buffer) const {
+      // Locals: a store to buffer may alias the member `padding` (both uint32), and g++ then
+      // reloads it in the loop and does not vectorise it.
+      const std::int16_t* e = entries + kb;
+      const std::uint32_t pad = padding, len = ke - kb;
+      const auto base = static_cast<std::int32_t>(i);
+#pragma omp simd
+      for (std::uint32_t k = 0; k < len; ++k) {
+        const std::int32_t d = e[k];
+        buffer[k] = d == kPaddingOffset ? pad : static_cast<std::uint32_t>(base + d);
+      }
+      return buffer;
+    }
+  };
+  // 32-bit form: the indices themselves.
+  struct Indices {
+    const std::uint32_t* entries;
+    const std::uint32_t* row(std::size_t, std::uint32_t kb, std::uint32_t, std::uint32_t*) const {
+      return entries + kb;
+    }
+  };
 
   // Build for particles already sorted by `grid` (grid.sort() then permuted). Self excluded.
   void build(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
-             double cutoff, std::uint32_t padding_index);
+             double cutoff, std::uint32_t padding_index, Width width = Width::automatic);
 
-  std::uint32_t begin(std::size_t i) const { return offset_[i]; }
-  std::uint32_t end(std::size_t i) const { return offset_[i + 1]; }
-  const std::uint32_t* data() const { return index_.data(); }
-  std::size_t total() const { return index_.size(); }
-  double mean_neighbours() const { return mean_; }  // real neighbours (without padding)
+  // pass(form) with form an Offsets or an Indices of this list; entries of particle i are
+  // [begin(i), end(i)).
+  template <class Pass>
+  decltype(auto) with_indices(Pass&& pass) const {
+    return wide_ ? pass(Indices{index_.data()}) : pass(Offsets{offset16_.data(), padding_});
+  }
+
+  std::uint32_t begin(std::size_t i) const {
+    return offset_[i];
+  }
+  std::uint32_t end(std::size_t i) const {
+    return offset_[i + 1];
+  }
+  std::size_t total() const {
+    return offset_.empty() ? 0 : offset_.back();
+  }
+  bool wide() const {
+    return wide_;
+  }
+  double mean_neighbours() const {
+    return mean_;
+  }  // real neighbours (without padding)
   std::size_t bytes() const {
-    return (offset_.capacity() + index_.capacity()) * sizeof(std::uint32_t);
+    return (offset_.capacity() + index_.capacity()) * sizeof(std::uint32_t) +
+           offset16_.capacity() * sizeof(std::int16_t);
   }
 
  private:
-  std::vector<std::uint32_t> offset_;  // size n + 1
-  std::vector<std::uint32_t> index_;
-  std::vector<std::uint32_t> count_;
+  std::vector<std::uint32_t> offset_;   // CSR row starts, size n + 1
+  std::vector<std::int16_t> offset16_;  // entries, 16-bit form
+  std::vector<std::uint32_t> index_;    // entries, 32-bit form (empty while 16-bit serves)
+  std::uint32_t padding_ = 0;
+  bool wide_ = false;
   double mean_ = 0.0;
 };
 

@@ -29,8 +29,10 @@ namespace adrsph {
 // r_i - r_j (positions are ~1e5 dx from the origin), u_i - u_j, rho_i - rho_j and C_i - C_j
 // (neighbour differences are ~1e-4 of the values). The sums of ~35 pair terms are float
 // too; their rounding (~1e-7 relative) is far below the scheme's own pair-sum errors.
-template <class Scheme, bool Ale, bool Diffuse = true, bool Network = false>
-void interaction_pass(ParticleStore& s, const PassContext& ctx) {
+//
+// Neighbours: NeighbourList::Offsets or ::Indices (interaction_pass below picks the list's).
+template <class Scheme, bool Ale, bool Diffuse, bool Network, class Neighbours>
+void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neighbours form) {
   static_assert(!(Ale && Network), "the ALE term is written for one species");
   static_assert(ParticleStore::kMaxMore == 3, "the network sums below are written for three");
   using real = float;
@@ -45,7 +47,6 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
   const double* c = s.c.data();
   const float* dmask = s.diffusion_mask.data();
   const float* fside = s.fluid_side.data();
-  const std::uint32_t* nb = ctx.neighbours.data();
   // Local copies: the stores of the rates below may alias references, and g++ then reloads
   // them inside the loops (2x slower, measured on the summation density).
   const QuinticKernel kernel = ctx.kernel;
@@ -87,8 +88,11 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
                  c3i = Network ? c3[i] : 0.0;
     const real ddxi = kPredict ? ddx[i] : real(0), ddyi = kPredict ? ddy[i] : real(0);
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
+    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
+    const std::uint32_t len = ke - kb;
 #pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy, wsum, cd1, cd2, cd3)
-    for (std::uint32_t k = kb; k < ke; ++k) {
+    for (std::uint32_t k = 0; k < len; ++k) {
       const std::uint32_t j = nb[k];
       const real dx = static_cast<real>(xi - x[j]), dy = static_cast<real>(yi - y[j]);
       const real r2 = dx * dx + dy * dy;
@@ -164,6 +168,12 @@ void interaction_pass(ParticleStore& s, const PassContext& ctx) {
         s.dc_more[e][i] = static_cast<float>(double(sums[e]) + ci_more[e] * double(cdil));
     }
   }
+}
+
+template <class Scheme, bool Ale, bool Diffuse = true, bool Network = false>
+void interaction_pass(ParticleStore& s, const PassContext& ctx) {
+  ctx.neighbours.with_indices(
+      [&](auto form) { interaction_pass_with<Scheme, Ale, Diffuse, Network>(s, ctx, form); });
 }
 
 }  // namespace adrsph

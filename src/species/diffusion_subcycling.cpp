@@ -6,41 +6,43 @@
 
 namespace adrsph {
 
-void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassContext& ctx) {
+namespace {
+template <class Neighbours>
+void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const Neighbours form,
+                          float* w) {
   const std::size_t n = s.size();
-  weight_.resize(ctx.neighbours.total());
-  const std::uint32_t* nb = ctx.neighbours.data();
   const double* x = s.x.data();
   const double* y = s.y.data();
   const float* vol = s.vol.data();
   const float* dmask = s.diffusion_mask.data();
   const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.max_diffusivity;
   const QuinticKernel kernel = ctx.kernel;  // local copy: see interaction_pass.hpp
-  float* w = weight_.data();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != kFluidByte) continue;
     const double xi = x[i], yi = y[i], voli = vol[i];
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
+    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
+    float* wi = w + kb;
+    const std::uint32_t len = ke - kb;
 #pragma omp simd
-    for (std::uint32_t k = kb; k < ke; ++k) {
+    for (std::uint32_t k = 0; k < len; ++k) {
       const std::uint32_t j = nb[k];
       const double dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
       const double lap_weight = kernel.laplacian_weight(r2, eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
-      w[k] = static_cast<float>(
+      wi[k] = static_cast<float>(
           species_diffusion_pair<double>(diffusivity, voli, vol[j], lap_weight, 1.0, dmask[j]));
     }
   }
 }
 
-double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
-                                 const std::vector<double>& c, double factor,
-                                 std::vector<double>& rate, bool track) const {
+template <class Neighbours>
+double rates_with(const ParticleStore& s, const PassContext& ctx, const Neighbours form,
+                  const float* w, const double* cc, double factor, std::vector<double>& rate,
+                  bool track) {
   const std::size_t n = s.size();
-  const std::uint32_t* nb = ctx.neighbours.data();
-  const float* w = weight_.data();
-  const double* cc = c.data();
   double exchange = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : exchange)
   for (std::size_t i = 0; i < n; ++i) {
@@ -48,19 +50,39 @@ double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
     const double ci = cc[i];
     double sum = 0.0;
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
+    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
+    const float* wi = w + kb;
+    const std::uint32_t len = ke - kb;
 #pragma omp simd reduction(+ : sum)
-    for (std::uint32_t k = kb; k < ke; ++k) sum += w[k] * (ci - cc[nb[k]]);
+    for (std::uint32_t k = 0; k < len; ++k) sum += wi[k] * (ci - cc[nb[k]]);
     rate[i] = factor * sum;
     if (track) {  // flux from the buffers, for the species balance (tests, diagnostics)
       double from_buffers = 0.0;
-      for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
-        const std::uint8_t kj = s.kind[nb[k]];
-        if (kj == kInletByte || kj == kOutletByte) from_buffers += w[k] * (ci - cc[nb[k]]);
+      for (std::uint32_t k = 0; k < len; ++k) {
+        const std::uint32_t j = nb[k];
+        const std::uint8_t kj = s.kind[j];
+        if (kj == kInletByte || kj == kOutletByte) from_buffers += wi[k] * (ci - cc[j]);
       }
       exchange += s.vol[i] * factor * from_buffers;
     }
   }
   return exchange;
+}
+}  // namespace
+
+void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassContext& ctx) {
+  weight_.resize(ctx.neighbours.total());
+  ctx.neighbours.with_indices(
+      [&](auto form) { compute_weights_with(s, ctx, form, weight_.data()); });
+}
+
+double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
+                                 const std::vector<double>& c, double factor,
+                                 std::vector<double>& rate, bool track) const {
+  return ctx.neighbours.with_indices([&](auto form) {
+    return rates_with(s, ctx, form, weight_.data(), c.data(), factor, rate, track);
+  });
 }
 
 DiffusionSubcycler::Plan DiffusionSubcycler::plan(double ratio) {

@@ -3,16 +3,20 @@
 
 namespace adrsph {
 
-double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx) {
+namespace {
+template <class Neighbours>
+double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const Neighbours form) {
   const std::size_t n = s.size();
-  const std::uint32_t* nb = ctx.neighbours.data();
   const double eta2 = ctx.phys.eta2;
   double total = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : total)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != kFluidByte) continue;
     double rate = 0.0;
-    for (std::uint32_t k = ctx.neighbours.begin(i); k < ctx.neighbours.end(i); ++k) {
+    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
+    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
+    for (std::uint32_t k = 0; k < ke - kb; ++k) {
       const std::uint32_t j = nb[k];
       if (s.kind[j] != kInletByte && s.kind[j] != kOutletByte) continue;
       const double dx = s.x[i] - s.x[j], dy = s.y[i] - s.y[j], r2 = dx * dx + dy * dy;
@@ -23,6 +27,12 @@ double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& c
     total += s.vol[i] * rate;
   }
   return total;
+}
+
+}  // namespace
+
+double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx) {
+  return ctx.neighbours.with_indices([&](auto form) { return exchange_rate_with(s, ctx, form); });
 }
 
 }  // namespace adrsph
