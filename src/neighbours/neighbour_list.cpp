@@ -17,6 +17,26 @@ void size_entries(std::vector<T>& used, std::vector<U>& other, std::size_t total
   used.resize(total);
   std::vector<U>().swap(other);
 }
+
+// Fill row i of the CSR with entry(i, j), j its neighbours in the order the cells give them,
+// then pad it to its end with `pad`. (A function, not a generic lambda: clang does not accept
+// an OpenMP loop in a generic lambda that reads the enclosing function's locals.)
+template <class T, class Entry>
+void fill_rows(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
+               double rc2, const std::vector<std::uint32_t>& offset, T* entries, Entry entry,
+               T pad) {
+  const std::size_t n = offset.size() - 1;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t k = offset[i];
+    const double xi = x[i], yi = y[i];
+    grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
+      const double dx = xi - x[j], dy = yi - y[j];
+      if (j != i && dx * dx + dy * dy < rc2) entries[k++] = entry(i, j);
+    });
+    for (; k < offset[i + 1]; ++k) entries[k] = pad;
+  }
+}
 }  // namespace
 
 void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
@@ -47,27 +67,15 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
   for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
   wide_ = width == Width::wide || far > kMaxOffset || longest > kMaxRow;
   padding_ = padding_index;
-  // Fill with entry(i, j) (the form's value of neighbour j of i) and pad.
-  auto fill = [&](auto* entries, auto entry, auto pad) {
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      std::uint32_t k = offset_[i];
-      const double xi = x[i], yi = y[i];
-      grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
-        const double dx = xi - x[j], dy = yi - y[j];
-        if (j != i && dx * dx + dy * dy < rc2) entries[k++] = entry(i, j);
-      });
-      for (; k < offset_[i + 1]; ++k) entries[k] = pad;
-    }
-  };
   if (wide_) {
     size_entries(index_, offset16_, offset_[n]);
-    fill(
-        index_.data(), [](std::size_t, std::uint32_t j) { return j; }, padding_index);
+    fill_rows(
+        grid, x, y, rc2, offset_, index_.data(), [](std::size_t, std::uint32_t j) { return j; },
+        padding_index);
   } else {
     size_entries(offset16_, index_, offset_[n]);
-    fill(
-        offset16_.data(),
+    fill_rows(
+        grid, x, y, rc2, offset_, offset16_.data(),
         [](std::size_t i, std::uint32_t j) {
           return static_cast<std::int16_t>(static_cast<std::int64_t>(j) -
                                            static_cast<std::int64_t>(i));
