@@ -1,7 +1,6 @@
 #include "neighbours/neighbour_list.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <type_traits>
 
 namespace adrsph {

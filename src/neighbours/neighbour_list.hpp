@@ -47,19 +47,7 @@ class NeighbourList {
     const std::int16_t* entries;
     std::uint32_t padding;
     const std::uint32_t* row(std::size_t i, std::uint32_t kb, std::uint32_t ke,
-                             std::uint32_t* buffer) const {
-      // Locals: a store to buffer may alias the member `padding` (both uint32), and g++ then
-      // reloads it in the loop and does not vectorise it.
-      const std::int16_t* e = entries + kb;
-      const std::uint32_t pad = padding, len = ke - kb;
-      const auto base = static_cast<std::int32_t>(i);
-#pragma omp simd
-      for (std::uint32_t k = 0; k < len; ++k) {
-        const std::int32_t d = e[k];
-        buffer[k] = d == kPaddingOffset ? pad : static_cast<std::uint32_t>(base + d);
-      }
-      return buffer;
-    }
+                             std::uint32_t* buffer) const;  // (below the class)
   };
   // 32-bit form: the indices themselves.
   struct Indices {
@@ -80,21 +68,11 @@ class NeighbourList {
     return wide_ ? pass(Indices{index_.data()}) : pass(Offsets{offset16_.data(), padding_});
   }
 
-  std::uint32_t begin(std::size_t i) const {
-    return offset_[i];
-  }
-  std::uint32_t end(std::size_t i) const {
-    return offset_[i + 1];
-  }
-  std::size_t total() const {
-    return offset_.empty() ? 0 : offset_.back();
-  }
-  bool wide() const {
-    return wide_;
-  }
-  double mean_neighbours() const {
-    return mean_;
-  }  // real neighbours (without padding)
+  std::uint32_t begin(std::size_t i) const { return offset_[i]; }
+  std::uint32_t end(std::size_t i) const { return offset_[i + 1]; }
+  std::size_t total() const { return offset_.empty() ? 0 : offset_.back(); }
+  bool wide() const { return wide_; }
+  double mean_neighbours() const { return mean_; }  // real neighbours (without padding)
   std::size_t bytes() const {
     return (offset_.capacity() + index_.capacity()) * sizeof(std::uint32_t) +
            offset16_.capacity() * sizeof(std::int16_t);
@@ -108,5 +86,21 @@ class NeighbourList {
   bool wide_ = false;
   double mean_ = 0.0;
 };
+
+inline const std::uint32_t* NeighbourList::Offsets::row(std::size_t i, std::uint32_t kb,
+                                                        std::uint32_t ke,
+                                                        std::uint32_t* buffer) const {
+  // Locals: a store to buffer may alias the member `padding` (both uint32), and g++ then
+  // reloads it in the loop and does not vectorise it.
+  const std::int16_t* e = entries + kb;
+  const std::uint32_t pad = padding, len = ke - kb;
+  const auto base = static_cast<std::int32_t>(i);
+#pragma omp simd
+  for (std::uint32_t k = 0; k < len; ++k) {
+    const std::int32_t d = e[k];
+    buffer[k] = d == kPaddingOffset ? pad : static_cast<std::uint32_t>(base + d);
+  }
+  return buffer;
+}
 
 }  // namespace adrsph
