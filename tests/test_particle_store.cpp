@@ -62,19 +62,35 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
   EXPECT_EQ(s.diffusion_mask[s.size()], 0.0f);
 }
 
-TEST(ParticleStore, SaveAndRestoreCoverTheStartState) {
+// The first evaluation's rates become the first-stage rates by a swap of buffers: the
+// values move, nothing is copied, and only the arrays the scheme uses take part.
+TEST(ParticleStore, FirstStageRatesAreSwappedInNotCopied) {
   ParticleStore s;
+  s.set_needs({true, true, true, 0, false});  // the modern scheme, rates of C kept
   s.mass = 1.0;
   s.push_back(1.0, 2.0, 3.0, 4.0, 5.0, 6.0, Kind::fluid);
-  s.save_start(0);
-  s.x[0] = s.y[0] = s.vx[0] = s.vy[0] = s.rho[0] = s.c[0] = -1.0;
-  s.restore_start(0);
-  EXPECT_EQ(s.x[0], 1.0);
-  EXPECT_EQ(s.y[0], 2.0);
-  EXPECT_EQ(s.vx[0], 3.0);
-  EXPECT_EQ(s.vy[0], 4.0);
-  EXPECT_EQ(s.rho[0], 5.0);
-  EXPECT_EQ(s.c[0], 6.0);
+  s.ax[0] = 1.5f, s.ay[0] = 2.5f, s.drho[0] = 3.5f, s.dc[0] = 4.5f, s.sx[0] = 5.5f, s.sy[0] = 6.5f;
+  const float* ax_buffer = s.ax.data();
+  s.keep_first_stage_rates();
+  EXPECT_EQ(s.ax_first.data(), ax_buffer);
+  EXPECT_EQ(s.ax_first[0], 1.5f);
+  EXPECT_EQ(s.ay_first[0], 2.5f);
+  EXPECT_EQ(s.drho_first[0], 3.5f);
+  EXPECT_EQ(s.dc_first[0], 4.5f);
+  EXPECT_EQ(s.sx_first[0], 5.5f);
+  EXPECT_EQ(s.sy_first[0], 6.5f);
+  EXPECT_TRUE(s.c_start.empty());
+  // Sub-cycled diffusion keeps C's start value instead of its rate; a prescribed flow has
+  // neither velocity nor density rates.
+  ParticleStore p;
+  p.set_needs({false, false, false, 0, true});
+  p.push_back(1.0, 2.0, 3.0, 0.0, 5.0, 6.0, Kind::fluid);
+  p.dc[0] = 7.5f;
+  p.keep_first_stage_rates();
+  EXPECT_EQ(p.dc[0], 7.5f);  // not swapped: C is undone from c_start
+  EXPECT_EQ(p.c_start.size(), 2u);
+  EXPECT_TRUE(p.dc_first.empty());
+  EXPECT_TRUE(p.ax.empty() && p.ax_first.empty() && p.drho_first.empty() && p.sx_first.empty());
 }
 
 }  // namespace

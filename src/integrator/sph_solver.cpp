@@ -7,6 +7,7 @@
 #include <string>
 
 #include "boundaries/boundary_extrapolation.hpp"
+#include "integrator/midpoint.hpp"
 #include "integrator/time_step.hpp"
 #include "schemes/density_passes.hpp"
 #include "schemes/interaction_pass.hpp"
@@ -84,8 +85,9 @@ void SphSolver::bind(bool split) {
       split ? &SphSolver::step_impl<S, Ale, true, Net> : &SphSolver::step_impl<S, Ale, false, Net>;
   eval_fn_ = split ? &SphSolver::evaluate_at_rest<S, Ale, true, Net>
                    : &SphSolver::evaluate_at_rest<S, Ale, false, Net>;
-  // The arrays S uses, and one set per species of the network; no more.
-  store_.set_needs({S::momentum, S::continuity, S::shifting, case_.species_count() - 1});
+  // The arrays S uses, and one set per species of the network; no more. Sub-cycled diffusion
+  // changes C after the transport: then C's start value is kept, not its first-stage rate.
+  store_.set_needs({S::momentum, S::continuity, S::shifting, case_.species_count() - 1, split});
 }
 
 std::size_t SphSolver::fluid_count() const {
@@ -141,14 +143,22 @@ void SphSolver::next_displacement(double a, bool from_start) {
   next_dy_.resize(n + 1);
   next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
   const bool predict = a >= 0.0;     // a < 0: no prediction wanted (evaluate())
+  const double h = 0.5 * a;          // from_start: a = dt, the first stage took dt/2
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (!predict || s.kind[i] == kWallByte) {
       next_dx_[i] = next_dy_[i] = 0.0f;
       continue;
     }
-    // As advance() moves it (no shifting in this scheme): x_next = base + a u.
-    const double bx = from_start ? s.x_start[i] : s.x[i], by = from_start ? s.y_start[i] : s.y[i];
+    // As advance() moves it (no shifting in this scheme): x_next = base + a u, the base the
+    // start of the step (stage 2, recovered as advance() recovers it) or x (stage 1).
+    double bx = s.x[i], by = s.y[i];
+    if (from_start) {
+      double tx0, ty0;
+      midpoint::first_stage_transport<true, false>(s, i, s.kind[i] == kFluidByte, h, tx0, ty0);
+      bx -= h * tx0;
+      by -= h * ty0;
+    }
     next_dx_[i] = static_cast<float>(bx + a * s.vx[i] - s.x[i]);
     next_dy_[i] = static_cast<float>(by + a * s.vy[i] - s.y[i]);
   }
@@ -176,43 +186,90 @@ void SphSolver::evaluate_impl(double a_next, bool from_start) {
   interaction_pass<S, Ale, !Split, Net>(store_, ctx);
 }
 
-// Explicit midpoint: u* = u0 + a f(u), with a = dt/2 from the start state, then a = dt.
-// Stage 1 (Save) also keeps the start state u0 of the non-wall particles: one pass over the
-// arrays instead of a separate copy (walls are never advanced, so they need no u0).
-template <class S, bool Save, bool Net>
-void SphSolver::advance(double a) {
+// Explicit midpoint (integrator/midpoint.hpp). Stage 1: q_h = q0 + dt/2 f(q0). Stage 2:
+// q1 = q0 + dt f(q_h), q0 recovered from q_h and the first-stage rates. Positions move with
+// the transport velocity of their stage (u + du for the fluid of a shifting scheme, eq. (10)).
+// Non-finite rates count as zero and are added to bad_rates_ (the step then fails).
+template <class S, int Stage, bool Net>
+void SphSolver::advance(double dt) {
+  using midpoint::rate_or_zero, midpoint::finite_rate;
   ScopedPhase timer(timers_, Phase::integration);
   ParticleStore& s = store_;
   const std::size_t n = s.size();
-#pragma omp parallel for schedule(static)
+  const double h = 0.5 * dt;
+  const double a = Stage == 1 ? h : dt;
+  const bool keep_c = s.needs().species_start;
+  const int more = Net ? s.needs().more_species : 0;
+  long bad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t k = s.kind[i];
     if (k == kWallByte) continue;
-    if constexpr (Save) s.save_start(i);
-    if (k == kFluidByte && S::momentum) {
-      // Midpoint: positions move with the current (transport) velocity, then u is updated.
+    const bool fluid = k == kFluidByte;
+    int nonfinite = 0;
+    auto take = [&nonfinite](float r) {
+      nonfinite += finite_rate(r) ? 0 : 1;
+      return rate_or_zero(r);
+    };
+    // q0: the current state at stage 1; at stage 2 recovered, q0 = q_h - dt/2 f0, as
+    // midpoint::first_stage_transport does for the positions.
+    double x0 = s.x[i], y0 = s.y[i];
+    if (fluid && S::momentum) {
+      double vx0 = s.vx[i], vy0 = s.vy[i];
+      if constexpr (Stage == 2) {
+        vx0 -= h * take(s.ax_first[i]);
+        vy0 -= h * take(s.ay_first[i]);
+        double tx0 = vx0, ty0 = vy0;
+        if constexpr (S::shifting) {
+          tx0 += take(s.sx_first[i]);
+          ty0 += take(s.sy_first[i]);
+        }
+        x0 -= h * tx0;
+        y0 -= h * ty0;
+      }
       double tx = s.vx[i], ty = s.vy[i];
       if constexpr (S::shifting) {
-        tx += s.sx[i];
-        ty += s.sy[i];
+        tx += take(s.sx[i]);
+        ty += take(s.sy[i]);
       }
-      s.x[i] = s.x_start[i] + a * tx;
-      s.y[i] = s.y_start[i] + a * ty;
-      s.vx[i] = s.vx_start[i] + a * s.ax[i];
-      s.vy[i] = s.vy_start[i] + a * s.ay[i];
+      s.x[i] = x0 + a * tx;
+      s.y[i] = y0 + a * ty;
+      s.vx[i] = vx0 + a * take(s.ax[i]);
+      s.vy[i] = vy0 + a * take(s.ay[i]);
     } else {
-      // Inlet (prescribed profile), outlet (frozen velocity), prescribed-flow fluid.
-      s.x[i] = s.x_start[i] + a * s.vx[i];
-      s.y[i] = s.y_start[i] + a * s.vy[i];
+      // Inlet (prescribed profile), outlet (frozen velocity), prescribed-flow fluid: u is
+      // constant over the step.
+      if constexpr (Stage == 2) {
+        x0 -= h * s.vx[i];
+        y0 -= h * s.vy[i];
+      }
+      s.x[i] = x0 + a * s.vx[i];
+      s.y[i] = y0 + a * s.vy[i];
     }
-    if (k == kFluidByte) {
-      if constexpr (S::continuity) s.rho[i] = s.rho_start[i] + a * s.drho[i];
-      s.c[i] = s.c_start[i] + a * s.dc[i];
+    if (fluid) {
+      if constexpr (S::continuity) {
+        double rho0 = s.rho[i];
+        if constexpr (Stage == 2) rho0 -= h * take(s.drho_first[i]);
+        s.rho[i] = rho0 + a * take(s.drho[i]);
+      }
+      double c0 = s.c[i];
+      if (keep_c && Stage == 1) s.c_start[i] = c0;
+      if (Stage == 2) c0 = keep_c ? s.c_start[i] : c0 - h * take(s.dc_first[i]);
+      s.c[i] = c0 + a * take(s.dc[i]);
       if constexpr (Net)
-        for (int e = 0; e < s.needs().more_species; ++e)
-          s.c_more[e][i] = s.c_more_start[e][i] + a * s.dc_more[e][i];
+        for (int e = 0; e < more; ++e) {
+          double& ce = s.c_more[e][i];
+          double ce0 = ce;
+          if (keep_c && Stage == 1) s.c_more_start[e][i] = ce0;
+          if (Stage == 2)
+            ce0 = keep_c ? s.c_more_start[e][i] : ce0 - h * take(s.dc_more_first[e][i]);
+          ce = ce0 + a * take(s.dc_more[e][i]);
+        }
     }
+    // Counted once, at stage 2, which reads the rates of both stages.
+    if constexpr (Stage == 2) bad += nonfinite > 0 ? 1 : 0;
   }
+  bad_rates_ += bad;
 }
 
 template <class S, bool Ale, bool Split, bool Net>
@@ -224,17 +281,19 @@ bool SphSolver::step_impl(double dt) {
   // The inlet value of a feed that varies, at the middle of the step (second order in time
   // for a smooth feed); a constant feed is the buffer's initial value.
   apply_feed(t_ + 0.5 * dt);
-  // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x_start = x then),
-  // stage 2 at x_start + dt u*.
+  // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x0 = x then),
+  // stage 2 at x0 + dt u*.
+  bad_rates_ = 0;
   evaluate_impl<S, Ale, Split, Net>(0.5 * dt, false);
   density_predicted_ = S::summation_density && predict_density_;
-  advance<S, true, Net>(0.5 * dt);
+  advance<S, 1, Net>(dt);
+  store_.keep_first_stage_rates();
   evaluate_impl<S, Ale, Split, Net>(dt, true);
   density_predicted_ = S::summation_density && predict_density_;
   double exchange = 0.0;         // with the buffers, for the ledger once the step is kept
   if (!Split && track_balance_)  // (sub-cycled diffusion accounts for its own exchange)
     exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
-  advance<S, false, Net>(dt);
+  advance<S, 2, Net>(dt);
   if constexpr (Split) exchange += diffuse_species(dt);
   // Guards before anything outside the particle state changes: a failed step restores the
   // start state and leaves kinds, inflow rows, ledger and time as they were.

@@ -126,23 +126,26 @@ class SphSolver {
   // Net: a network of several species (interaction_pass.hpp, Network).
   template <class S, bool Ale, bool Split, bool Net>
   bool step_impl(double dt);
-  // a_next: the coming stage's step (prediction at x_start + a_next u; before the first stage,
-  // from_start = false: at x + a_next u); a_next < 0: no prediction wanted.
+  // a_next: the coming stage's step (prediction at x0 + a_next u, x0 the start of the step;
+  // before the first stage, from_start = false: at x + a_next u); a_next < 0: no prediction.
   template <class S, bool Ale, bool Split, bool Net>
   void evaluate_impl(double a_next, bool from_start);
   template <class S, bool Ale, bool Split, bool Net>
   void evaluate_at_rest() {  // evaluate() (a prediction for the current positions, unused)
     evaluate_impl<S, Ale, Split, Net>(-1.0, 0.0);
   }
-  // The displacement of the coming stage, next_dx_ = base + a u - x (base: x_start, or x when
-  // a_base < 0, before the first stage), as advance() will apply it.
+  // The displacement of the coming stage, next_dx_ = base + a u - x (base: the start of the
+  // step, or x before the first stage), as advance() will apply it.
   void next_displacement(double a, bool from_start);
   template <class S, bool Ale, bool Net>
   void bind(bool split);
-  // state = saved state + a * rates; Save: first stage, also saves the start state
-  template <class S, bool Save, bool Net>
-  void advance(double a);
+  // The update of stage 1 or 2 of the explicit midpoint step of size dt (midpoint.hpp).
+  template <class S, int Stage, bool Net>
+  void advance(double dt);
   bool check_state(double dt);
+  // A failed step of size dt: every particle back to its start state (midpoint.hpp).
+  void undo_step(double dt);
+  long bad_rates_ = 0;  // fluid particles with a non-finite rate this step (taken as zero)
   // The phases of a step after the transport (step_impl reads as this list).
   double diffuse_species(double dt);  // sub-cycled diffusion; returns the buffer exchange
   void react(double dt);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "integrator/midpoint.hpp"
 #include "integrator/sph_solver.hpp"
 #include "species/inlet_feed.hpp"
 
@@ -23,7 +24,56 @@ inline bool finite_state(const ParticleStore& s, std::size_t i, double t2) {
   return std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&
          std::isfinite(s.rho[i]) && std::isfinite(s.c[i]);
 }
+// Every rate of this step of fluid particle i is finite (advance() took the others as zero).
+bool finite_rates(const ParticleStore& s, std::size_t i) {
+  using midpoint::finite_rate;
+  bool ok = true;
+  ParticleStore::for_each_first_stage_pair(s, [&](const auto& rate, const auto& first) {
+    ok = ok && finite_rate(rate[i]) && finite_rate(first[i]);
+  });
+  if (s.needs().species_start) {  // dc has no first-stage array then
+    ok = ok && finite_rate(s.dc[i]);
+    for (int e = 0; e < s.needs().more_species; ++e) ok = ok && finite_rate(s.dc_more[e][i]);
+  }
+  return ok;
+}
 }  // namespace
+
+// Back from q1 = q0 + dt f(q_h) to q0 (midpoint.hpp), with the rates advance() used.
+void SphSolver::undo_step(double dt) {
+  using midpoint::rate_or_zero;
+  ParticleStore& s = store_;
+  const ParticleStore::Needs& needs = s.needs();
+  const double h = 0.5 * dt;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const std::uint8_t k = s.kind[i];
+    if (k == kWallByte) continue;
+    const bool fluid = k == kFluidByte;
+    double tx = s.vx[i], ty = s.vy[i];  // the second stage's transport velocity
+    if (fluid && needs.momentum) {
+      s.vx[i] -= dt * rate_or_zero(s.ax[i]);  // u0
+      s.vy[i] -= dt * rate_or_zero(s.ay[i]);
+      tx = s.vx[i] + h * rate_or_zero(s.ax_first[i]);  // u_h
+      ty = s.vy[i] + h * rate_or_zero(s.ay_first[i]);
+      if (needs.shifting) {
+        tx += rate_or_zero(s.sx[i]);
+        ty += rate_or_zero(s.sy[i]);
+      }
+    }
+    s.x[i] -= dt * tx;
+    s.y[i] -= dt * ty;
+    if (!fluid) continue;
+    if (needs.continuity) s.rho[i] -= dt * rate_or_zero(s.drho[i]);
+    if (needs.species_start) {
+      s.c[i] = s.c_start[i];
+      for (int e = 0; e < needs.more_species; ++e) s.c_more[e][i] = s.c_more_start[e][i];
+    } else {
+      s.c[i] -= dt * rate_or_zero(s.dc[i]);
+      for (int e = 0; e < needs.more_species; ++e)
+        s.c_more[e][i] -= dt * rate_or_zero(s.dc_more[e][i]);
+    }
+  }
+}
 
 // Particles a re-sort found outside the channel. The step that moved them is kept (they are
 // removed already): the failure says so and stops the run there.
@@ -78,6 +128,7 @@ bool SphSolver::check_state(double dt) {
     drho_max = std::max(drho_max, finite ? std::fabs(s.rho[i] / rho0 - 1.0) : 0.0);
     if (finite) c_dev = std::max(c_dev, c_off);
   }
+  bad += static_cast<int>(bad_rates_);  // fluid particles with a non-finite rate (advance())
   const double vmax = std::sqrt(vmax2);
   FailureKind kind = FailureKind::none;
   if (bad > 0)
@@ -96,15 +147,19 @@ bool SphSolver::check_state(double dt) {
   // A guard tripped (rare): find the particle that failed worst, serially.
   std::size_t worst = 0;
   double worst_value = -1.0;
+  int non_finite = 0;  // particles with a non-finite state or rate, each counted once
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] == kWallByte) continue;
     const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];
     double value = 0.0;
     switch (kind) {
       case FailureKind::non_finite:
-        value = finite_state(s, i, transport_speed2(s, i, shifting)) && std::isfinite(c_outside(i))
+        value = finite_state(s, i, transport_speed2(s, i, shifting)) &&
+                        std::isfinite(c_outside(i)) &&
+                        (s.kind[i] != kFluidByte || finite_rates(s, i))
                     ? 0.0
                     : 1.0;
+        non_finite += value > 0.0 ? 1 : 0;
         break;
       case FailureKind::speed:
         value = std::sqrt(v2);
@@ -125,16 +180,15 @@ bool SphSolver::check_state(double dt) {
                               : s.kind[worst] == kInletByte ? "inlet"
                                                             : "outlet";
   // Restore the last good state (start of this step; walls were not advanced).
-  for (std::size_t i = 0; i < n; ++i)
-    if (s.kind[i] != kWallByte) s.restore_start(i);
+  undo_step(dt);
   density_predicted_ = false;
   failure_site_ = {kind, t_ + dt, steps_ + 1, s.x[worst], s.y[worst], worst_value};
   std::ostringstream m;
   m << "at t = " << t_ + dt << " s, step " << steps_ + 1 << ", dt = " << dt << " s: ";
   switch (kind) {
     case FailureKind::non_finite:
-      failure_site_.value = bad;
-      m << bad << " particle(s) with non-finite state (NaN or inf)";
+      failure_site_.value = non_finite;
+      m << non_finite << " particle(s) with non-finite state or rates (NaN or inf)";
       break;
     case FailureKind::speed:
       m << "particle speed " << vmax << " mm/s exceeds 0.5 c0 = " << 0.5 * case_.c0()

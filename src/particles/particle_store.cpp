@@ -44,15 +44,25 @@ void ParticleStore::resize(std::size_t n) {
 void ParticleStore::set_needs(Needs n) {
   // Free what is switched off, then size what is on (resize skips nothing it visits).
   auto release = [](auto& a) { std::decay_t<decltype(a)>().swap(a); };
-  if (!n.momentum) release(ax), release(ay), release(vx_start), release(vy_start);
-  if (!n.continuity) release(drho), release(rho_start);
-  if (!n.shifting) release(sx), release(sy);
-  for (int e = n.more_species; e < kMaxMore; ++e)
-    release(c_more[e]), release(dc_more[e]), release(c_more_start[e]);
+  if (!n.momentum) release(ax), release(ay), release(ax_first), release(ay_first);
+  if (!n.continuity) release(drho), release(drho_first);
+  if (!n.shifting) release(sx), release(sy), release(sx_first), release(sy_first);
+  if (n.species_start) release(dc_first);
+  if (!n.species_start) release(c_start);
+  for (int e = 0; e < kMaxMore; ++e) {
+    const bool used = e < n.more_species;
+    if (!used) release(c_more[e]), release(dc_more[e]);
+    if (!used || n.species_start) release(dc_more_first[e]);
+    if (!used || !n.species_start) release(c_more_start[e]);
+  }
   needs_ = n;
   const std::size_t cap = capacity();
   reserve(cap);
   resize(n_);
+}
+
+void ParticleStore::keep_first_stage_rates() {
+  for_each_first_stage_pair(*this, [](auto& rate, auto& first) { rate.swap(first); });
 }
 
 void ParticleStore::reset_padding() {

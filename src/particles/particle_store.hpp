@@ -35,23 +35,29 @@ struct ParticleStore {
   // Rates of one evaluation (fluid particles only).
   std::vector<float> ax, ay, drho, dc;
   std::vector<float> sx, sy;  // shifting velocity du (modern scheme), eq. (10)
-  // State at the start of the step (explicit midpoint needs it), double like the state.
-  std::vector<double> x_start, y_start, vx_start, vy_start, rho_start, c_start;
+  // The rates of the first stage of the step, kept for the second (explicit midpoint goes
+  // back to the start state, u0 = u_half - dt/2 f0: src/integrator/midpoint.hpp). They are
+  // the arrays above of the first evaluation, swapped in (keep_first_stage_rates): no copy.
+  std::vector<float> ax_first, ay_first, drho_first, dc_first, sx_first, sy_first;
+  // C at the start of the step, when sub-cycled diffusion changes it after the transport
+  // (Needs::species_start): the rates alone cannot undo that step.
+  std::vector<double> c_start;
   // The second and later species of a network (Case::more_species), one array each, like c,
-  // dc and c_start. Needs::more_species of them are in use; the others stay empty.
+  // dc, dc_first and c_start. Needs::more_species of them are in use; the others stay empty.
   static constexpr int kMaxMore = Case::kMaxSpecies - 1;
   std::array<std::vector<double>, kMaxMore> c_more, c_more_start;
-  std::array<std::vector<float>, kMaxMore> dc_more;
+  std::array<std::vector<float>, kMaxMore> dc_more, dc_more_first;
 
   double mass = 0.0;  // every particle carries m = rho0 dx^2 (per unit depth)
 
   // Which optional arrays the scheme writes and reads (scheme_traits.hpp): the others stay
   // empty. Set before the store is first sized (set_needs() resizes what it switches on).
   struct Needs {
-    bool momentum = true;    // ax, ay and the start-of-step velocity
-    bool continuity = true;  // drho and the start-of-step density
-    bool shifting = true;    // sx, sy
-    int more_species = 0;    // c_more, dc_more and c_more_start in use
+    bool momentum = true;        // ax, ay and their first-stage copies
+    bool continuity = true;      // drho and drho_first
+    bool shifting = true;        // sx, sy and their first-stage copies
+    int more_species = 0;        // c_more, dc_more and their first-stage/start arrays in use
+    bool species_start = false;  // c_start (c_more_start) instead of dc_first (dc_more_first)
   };
   void set_needs(Needs n);
   const Needs& needs() const { return needs_; }
@@ -75,13 +81,9 @@ struct ParticleStore {
   // smaller than size(): particles not listed are removed.
   void permute(std::span<const std::uint32_t> order);
   void reset_padding();
-  // Explicit midpoint: keep particle i's start-of-step state, or go back to it.
-  void save_start(std::size_t i) {
-    for_each_start_pair(*this, [i](auto& now, auto& start) { start[i] = now[i]; });
-  }
-  void restore_start(std::size_t i) {
-    for_each_start_pair(*this, [i](auto& now, auto& start) { now[i] = start[i]; });
-  }
+  // After the first evaluation of a step: its rates become the first-stage rates, and the
+  // arrays they leave take the second evaluation's (a swap of buffers, nothing is copied).
+  void keep_first_stage_rates();
 
   // The field list: every array of the store the scheme needs, once, with its name.
   // reserve, resize, bytes, permute and the checkpoint (snapshot, restore and the file's
@@ -110,17 +112,22 @@ struct ParticleStore {
     if (s.needs_.momentum) visit(s.ax, per_step, "ax"), visit(s.ay, per_step, "ay");
     if (s.needs_.continuity) visit(s.drho, per_step, "drho");
     if (s.needs_.shifting) visit(s.sx, per_step, "sx"), visit(s.sy, per_step, "sy");
-    for_each_start_pair(s, [&](auto&, auto& start) { visit(start, per_step, "start"); });
+    for_each_first_stage_pair(s, [&](auto&, auto& first) { visit(first, per_step, "first"); });
+    if (s.needs_.species_start) {
+      visit(s.c_start, per_step, "c_start");
+      for (int e = 0; e < s.needs_.more_species; ++e) visit(s.c_more_start[e], per_step, "start");
+    }
   }
-  // The state the explicit midpoint saves at the start of a step, with its copy: positions
-  // and C always, the velocity when the momentum equation moves it, the density when the
-  // continuity equation does (summation density is derived, a prescribed flow keeps both).
+  // Each rate array in use with the array that keeps its first-stage values.
   template <class Store, class Visit>
-  static void for_each_start_pair(Store& s, Visit&& visit) {
-    visit(s.x, s.x_start), visit(s.y, s.y_start), visit(s.c, s.c_start);
-    for (int e = 0; e < s.needs_.more_species; ++e) visit(s.c_more[e], s.c_more_start[e]);
-    if (s.needs_.momentum) visit(s.vx, s.vx_start), visit(s.vy, s.vy_start);
-    if (s.needs_.continuity) visit(s.rho, s.rho_start);
+  static void for_each_first_stage_pair(Store& s, Visit&& visit) {
+    if (s.needs_.momentum) visit(s.ax, s.ax_first), visit(s.ay, s.ay_first);
+    if (s.needs_.continuity) visit(s.drho, s.drho_first);
+    if (s.needs_.shifting) visit(s.sx, s.sx_first), visit(s.sy, s.sy_first);
+    if (!s.needs_.species_start) {
+      visit(s.dc, s.dc_first);
+      for (int e = 0; e < s.needs_.more_species; ++e) visit(s.dc_more[e], s.dc_more_first[e]);
+    }
   }
   // Keep the masks in step with kind[i] after a kind change.
   void set_kind(std::size_t i, Kind k) {
