@@ -99,15 +99,19 @@ std::size_t SphSolver::fluid_count() const {
 void SphSolver::rebuild() {
   {
     ScopedPhase timer(timers_, Phase::sort);
-    scene_.feed_and_drain(store_, keep_, lost_);
+    // The sort's work arrays live only here (9 bytes per particle): a field write or a
+    // checkpoint between rebuilds, which adds HDF5's own memory, does not find them held.
+    std::vector<char> keep;
+    std::vector<std::uint32_t> order, outside;
+    scene_.feed_and_drain(store_, keep, lost_);
     const std::size_t n = store_.size();
     // Removed particles are sent outside the grid so the counting sort drops them.
     for (std::size_t i = 0; i < n; ++i)
-      if (!keep_[i]) store_.x[i] = std::nan("");
-    grid_.sort(std::span(store_.x).first(n), std::span(store_.y).first(n), order_, outside_);
-    for (std::uint32_t i : outside_)
+      if (!keep[i]) store_.x[i] = std::nan("");
+    grid_.sort(std::span(store_.x).first(n), std::span(store_.y).first(n), order, outside);
+    for (std::uint32_t i : outside)
       if (std::isfinite(store_.x[i]) && store_.kind[i] == kFluidByte) ++lost_;
-    store_.permute(order_);
+    store_.permute(order);
   }
   {
     ScopedPhase timer(timers_, Phase::neighbours);

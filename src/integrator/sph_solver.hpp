@@ -194,8 +194,6 @@ class SphSolver {
   double particle_steps_ = 0.0;
   std::string failure_;
   FailureSite failure_site_;
-  std::vector<std::uint32_t> order_, outside_;
-  std::vector<char> keep_;
 };
 
 }  // namespace adrsph

@@ -39,24 +39,24 @@ void CellGrid::sort(std::span<const double> x, std::span<const double> y,
                     std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& outside) {
   const std::size_t n = x.size();
   const int ncell = nx_ * ny_;
-  particle_rank_.resize(n);
+  std::vector<int> particle_rank(n);  // not kept: a rebuild's work array (SphSolver::rebuild)
   outside.clear();
   std::fill(start_.begin(), start_.end(), 0u);
   for (std::size_t i = 0; i < n; ++i) {
     if (!inside(x[i], y[i]) || !std::isfinite(x[i]) || !std::isfinite(y[i])) {
-      particle_rank_[i] = -1;
+      particle_rank[i] = -1;
       outside.push_back(static_cast<std::uint32_t>(i));
       continue;
     }
     const int r = rank_[cell_y(y[i]) * nx_ + cell_x(x[i])];
-    particle_rank_[i] = r;
+    particle_rank[i] = r;
     ++start_[r + 1];
   }
   for (int r = 0; r < ncell; ++r) start_[r + 1] += start_[r];
   order.resize(n - outside.size());
   std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
-    if (particle_rank_[i] >= 0) order[fill[particle_rank_[i]]++] = static_cast<std::uint32_t>(i);
+    if (particle_rank[i] >= 0) order[fill[particle_rank[i]]++] = static_cast<std::uint32_t>(i);
 }
 
 }  // namespace adrsph

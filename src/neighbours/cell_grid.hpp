@@ -61,7 +61,6 @@ class CellGrid {
   int nx_ = 0, ny_ = 0;
   std::vector<int> rank_;             // cell id (cy * nx + cx) -> Morton rank
   std::vector<std::uint32_t> start_;  // size n_cells + 1
-  std::vector<int> particle_rank_;    // scratch
 };
 
 }  // namespace adrsph

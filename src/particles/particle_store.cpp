@@ -6,20 +6,45 @@
 namespace adrsph {
 
 namespace {
-// Gather a[order[i]] into tmp (which keeps its capacity) and swap it in.
-template <class T>
-void permute_array(std::vector<T>& a, std::span<const std::uint32_t> order, std::vector<T>& tmp) {
-  tmp.resize(order.size() + 1);
-  for (std::size_t i = 0; i < order.size(); ++i) tmp[i] = a[order[i]];
-  a.swap(tmp);
+// n flags, one bit each.
+class Marks {
+ public:
+  explicit Marks(std::size_t n) : words_((n + 63) / 64, 0) {}
+  bool test(std::size_t i) const { return (words_[i / 64] >> (i % 64)) & 1u; }
+  void set(std::size_t i) { words_[i / 64] |= std::uint64_t{1} << (i % 64); }
+  void clear() { std::fill(words_.begin(), words_.end(), 0); }
+
+ private:
+  std::vector<std::uint64_t> words_;
+};
+
+// a[i] = old a[from(i)] for i < n, in place: each cycle of the permutation is followed once,
+// holding one value aside. No second array: the store is most of a run's memory, and a copy
+// of its largest field for the gather cost 13 bytes per particle. A re-sort moves particles
+// within a few cells, so the cycles are short and stay in cache.
+template <class T, class From>
+void permute_in_place(std::vector<T>& a, std::size_t n, From from, Marks& done) {
+  done.clear();
+  for (std::size_t start = 0; start < n; ++start) {
+    if (done.test(start)) continue;
+    const T held = a[start];
+    std::size_t j = start;
+    for (;;) {
+      done.set(j);
+      const std::size_t k = from(j);
+      if (k == start) {
+        a[j] = held;
+        break;
+      }
+      a[j] = a[k];
+      j = k;
+    }
+  }
 }
 }  // namespace
 
 void ParticleStore::reserve(std::size_t n) {
   for_each_field(*this, [n](auto& a, Role, const char*) { a.reserve(n + 1); });
-  scratch_.reserve(n + 1);
-  scratch_f_.reserve(n + 1);
-  scratch_k_.reserve(n + 1);
 }
 
 std::size_t ParticleStore::bytes() const {
@@ -28,9 +53,6 @@ std::size_t ParticleStore::bytes() const {
     total += a.capacity() * sizeof(typename std::decay_t<decltype(a)>::value_type);
   };
   for_each_field(*this, add);
-  add(scratch_, Role::per_step);
-  add(scratch_f_, Role::per_step);
-  add(scratch_k_, Role::per_step);
   return total;
 }
 
@@ -92,24 +114,22 @@ void ParticleStore::push_back(double px, double py, double pvx, double pvy, doub
 }
 
 void ParticleStore::permute(std::span<const std::uint32_t> order) {
-  const std::size_t cap = std::max(x.capacity(), order.size() + 1);
-  scratch_.reserve(cap);
-  scratch_f_.reserve(cap);
-  scratch_k_.reserve(cap);
-  n_ = order.size();
+  // Completed to a permutation of all n particles: the ones not listed (removed) take the
+  // places past order.size(), then are cut off.
+  const std::size_t n = n_, kept = order.size();
+  Marks done(n);
+  for (std::uint32_t i : order) done.set(i);
+  std::vector<std::uint32_t> removed;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!done.test(i)) removed.push_back(static_cast<std::uint32_t>(i));
+  const auto from = [&](std::size_t j) -> std::size_t {
+    return j < kept ? order[j] : removed[j - kept];
+  };
   for_each_field(*this, [&](auto& a, Role role, const char*) {
-    if (!carried(role)) {
-      a.resize(n_ + 1);
-      return;
-    }
-    using T = typename std::decay_t<decltype(a)>::value_type;
-    if constexpr (std::is_same_v<T, double>)
-      permute_array(a, order, scratch_);
-    else if constexpr (std::is_same_v<T, float>)
-      permute_array(a, order, scratch_f_);
-    else
-      permute_array(a, order, scratch_k_);
+    if (carried(role)) permute_in_place(a, n, from, done);
+    a.resize(kept + 1);  // shrinking: the capacity stays
   });
+  n_ = kept;
   reset_padding();
 }
 

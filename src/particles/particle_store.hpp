@@ -72,13 +72,13 @@ struct ParticleStore {
   // Make room for n particles (plus the padding one) in every array, exactly.
   void reserve(std::size_t n);
   std::size_t capacity() const { return x.capacity() == 0 ? 0 : x.capacity() - 1; }
-  // Heap bytes held by the arrays (capacity, scratch included).
+  // Heap bytes held by the arrays (capacity).
   std::size_t bytes() const;
   // `c_more`: the values of the other species (Needs::more_species of them; none: 0).
   void push_back(double x, double y, double vx, double vy, double rho, double c, Kind k,
                  std::span<const double> c_more = {});
   // Reorder the real particles: new index i holds old particle order[i]. order.size() may be
-  // smaller than size(): particles not listed are removed.
+  // smaller than size(): particles not listed are removed. Done in place (no scratch array).
   void permute(std::span<const std::uint32_t> order);
   void reset_padding();
   // After the first evaluation of a step: its rates become the first-stage rates, and the
@@ -139,10 +139,6 @@ struct ParticleStore {
  private:
   std::size_t n_ = 0;
   Needs needs_;
-  // permute() gathers into these and swaps them in; they keep the store's capacity.
-  std::vector<double> scratch_;
-  std::vector<float> scratch_f_;
-  std::vector<std::uint8_t> scratch_k_;
 };
 
 }  // namespace adrsph

@@ -20,9 +20,9 @@ struct FieldFrameInfo {
 };
 
 // Appends frames to an HDF5 file: a new one (an existing file is replaced), or, with
-// `append`, the file of an interrupted run that is continued (its frames are kept). Each
-// frame is flushed to disk when written, so a run that dies later keeps its frames. Errors
-// throw std::runtime_error naming the file.
+// `append`, the file of an interrupted run that is continued (its frames are kept). The file
+// is open only while a frame is written: a run that dies later keeps its frames, and HDF5
+// holds no memory between frames. Errors throw std::runtime_error naming the file.
 class FieldsWriter {
  public:
   explicit FieldsWriter(std::filesystem::path file, bool append = false);
@@ -31,13 +31,14 @@ class FieldsWriter {
   FieldsWriter& operator=(const FieldsWriter&) = delete;
 
   void write(const FieldFrame& frame);
-  void close();  // also done by the destructor
+  void close();  // no frame is written after it; also done by the destructor
   const std::vector<FieldFrameInfo>& frames() const { return frames_; }
   const std::filesystem::path& file() const { return file_; }
 
  private:
   std::filesystem::path file_;
-  std::int64_t id_ = -1;  // hid_t
+  void write_frame(std::int64_t file_id, const FieldFrame& frame);  // file_id: a hid_t
+  bool open_ = false;
   std::vector<FieldFrameInfo> frames_;
 };
 
