@@ -18,27 +18,40 @@ class Marks {
   std::vector<std::uint64_t> words_;
 };
 
-// a[i] = old a[from(i)] for i < n, in place: each cycle of the permutation is followed once,
-// holding one value aside. No second array: the store is most of a run's memory, and a copy
-// of its largest field for the gather cost 13 bytes per particle. A re-sort moves particles
-// within a few cells, so the cycles are short and stay in cache.
-template <class T, class From>
-void permute_in_place(std::vector<T>& a, std::size_t n, From from, Marks& done) {
-  done.clear();
+// The cycles of the permutation i -> from(i), fixed points left out: cycle k is
+// path[ends[k-1] .. ends[k]), each position followed by the one it takes its value from.
+struct Cycles {
+  std::vector<std::uint32_t> path, ends;
+};
+template <class From>
+Cycles cycles_of(std::size_t n, From from, Marks& seen) {
+  Cycles c;
+  seen.clear();
   for (std::size_t start = 0; start < n; ++start) {
-    if (done.test(start)) continue;
-    const T held = a[start];
+    if (seen.test(start) || from(start) == start) continue;
     std::size_t j = start;
-    for (;;) {
-      done.set(j);
-      const std::size_t k = from(j);
-      if (k == start) {
-        a[j] = held;
-        break;
-      }
-      a[j] = a[k];
-      j = k;
-    }
+    do {
+      seen.set(j);
+      c.path.push_back(static_cast<std::uint32_t>(j));
+      j = from(j);
+    } while (j != start);
+    c.ends.push_back(static_cast<std::uint32_t>(c.path.size()));
+  }
+  return c;
+}
+
+// a[i] = old a[from(i)], in place: along each cycle every value moves one place, one value
+// held aside. No second array: the store is most of a run's memory, and a copy of its largest
+// field for a gather cost 13 bytes per particle. A re-sort moves few particles and those
+// within a few cells: the cycles are short and stay in cache.
+template <class T>
+void permute_in_place(std::vector<T>& a, const Cycles& c) {
+  std::uint32_t first = 0;
+  for (std::uint32_t end : c.ends) {
+    const T held = a[c.path[first]];
+    for (std::uint32_t k = first; k + 1 < end; ++k) a[c.path[k]] = a[c.path[k + 1]];
+    a[c.path[end - 1]] = held;
+    first = end;
   }
 }
 }  // namespace
@@ -125,8 +138,9 @@ void ParticleStore::permute(std::span<const std::uint32_t> order) {
   const auto from = [&](std::size_t j) -> std::size_t {
     return j < kept ? order[j] : removed[j - kept];
   };
+  const Cycles cycles = cycles_of(n, from, done);
   for_each_field(*this, [&](auto& a, Role role, const char*) {
-    if (carried(role)) permute_in_place(a, n, from, done);
+    if (carried(role)) permute_in_place(a, cycles);
     a.resize(kept + 1);  // shrinking: the capacity stays
   });
   n_ = kept;
