@@ -28,7 +28,6 @@ FieldsWriter::FieldsWriter(std::filesystem::path file, bool append) : file_(std:
   if (!append) {
     const auto f = h5::check(H5Fcreate(file_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
                              H5Fclose, name, "create the file");
-    open_ = true;
     return;
   }
   const auto f = h5::check(H5Fopen(file_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, name,
@@ -47,20 +46,15 @@ FieldsWriter::FieldsWriter(std::filesystem::path file, bool append) : file_(std:
                        static_cast<long>(h5::read_attribute<std::int64_t>(g.get(), "step", name)),
                        static_cast<std::size_t>(n)});
   }
-  open_ = true;
-}
-
-FieldsWriter::~FieldsWriter() {
-  close();
 }
 
 void FieldsWriter::close() {
-  open_ = false;
+  closed_ = true;
 }
 
 void FieldsWriter::write(const FieldFrame& f) {
   const std::string file = file_.string();
-  if (!open_) throw std::runtime_error(file + ": HDF5: the file is closed");
+  if (closed_) throw std::runtime_error(file + ": HDF5: the file is closed");
   const std::span<const double> arrays[] = {f.x, f.y, f.vx, f.vy, f.rho, f.p, f.c};
   const std::size_t n = f.x.size();
   for (std::size_t i = 0; i < std::size(arrays); ++i)

@@ -6,32 +6,20 @@
 namespace adrsph {
 
 namespace {
-// n flags, one bit each.
-class Marks {
- public:
-  explicit Marks(std::size_t n) : words_((n + 63) / 64, 0) {}
-  bool test(std::size_t i) const { return (words_[i / 64] >> (i % 64)) & 1u; }
-  void set(std::size_t i) { words_[i / 64] |= std::uint64_t{1} << (i % 64); }
-  void clear() { std::fill(words_.begin(), words_.end(), 0); }
-
- private:
-  std::vector<std::uint64_t> words_;
-};
-
 // The cycles of the permutation i -> from(i), fixed points left out: cycle k is
 // path[ends[k-1] .. ends[k]), each position followed by the one it takes its value from.
 struct Cycles {
   std::vector<std::uint32_t> path, ends;
 };
 template <class From>
-Cycles cycles_of(std::size_t n, From from, Marks& seen) {
+Cycles cycles_of(std::size_t n, From from, std::vector<bool>& seen) {
   Cycles c;
-  seen.clear();
+  seen.assign(n, false);
   for (std::size_t start = 0; start < n; ++start) {
-    if (seen.test(start) || from(start) == start) continue;
+    if (seen[start] || from(start) == start) continue;
     std::size_t j = start;
     do {
-      seen.set(j);
+      seen[j] = true;
       c.path.push_back(static_cast<std::uint32_t>(j));
       j = from(j);
     } while (j != start);
@@ -130,11 +118,11 @@ void ParticleStore::permute(std::span<const std::uint32_t> order) {
   // Completed to a permutation of all n particles: the ones not listed (removed) take the
   // places past order.size(), then are cut off.
   const std::size_t n = n_, kept = order.size();
-  Marks done(n);
-  for (std::uint32_t i : order) done.set(i);
+  std::vector<bool> done(n, false);
+  for (std::uint32_t i : order) done[i] = true;
   std::vector<std::uint32_t> removed;
   for (std::size_t i = 0; i < n; ++i)
-    if (!done.test(i)) removed.push_back(static_cast<std::uint32_t>(i));
+    if (!done[i]) removed.push_back(static_cast<std::uint32_t>(i));
   const auto from = [&](std::size_t j) -> std::size_t {
     return j < kept ? order[j] : removed[j - kept];
   };

@@ -26,19 +26,18 @@ struct FieldFrameInfo {
 class FieldsWriter {
  public:
   explicit FieldsWriter(std::filesystem::path file, bool append = false);
-  ~FieldsWriter();
   FieldsWriter(const FieldsWriter&) = delete;
   FieldsWriter& operator=(const FieldsWriter&) = delete;
 
   void write(const FieldFrame& frame);
-  void close();  // no frame is written after it; also done by the destructor
+  void close();  // no frame is written after it (the file itself is closed after each frame)
   const std::vector<FieldFrameInfo>& frames() const { return frames_; }
   const std::filesystem::path& file() const { return file_; }
 
  private:
   std::filesystem::path file_;
   void write_frame(std::int64_t file_id, const FieldFrame& frame);  // file_id: a hid_t
-  bool open_ = false;
+  bool closed_ = false;
   std::vector<FieldFrameInfo> frames_;
 };
 
