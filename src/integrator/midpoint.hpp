@@ -27,23 +27,32 @@ inline double rate_or_zero(float r) {
   return finite_rate(r) ? static_cast<double>(r) : 0.0;
 }
 
-// Transport velocity of the first stage of particle i (u0 + du0 for a moving fluid particle,
-// u otherwise) from its midpoint state, u0 = u_h - dt/2 a0 (h = dt/2). Momentum and Shifting:
-// what the scheme's fluid particles carry; `fluid`: whether i is one.
-template <bool Momentum, bool Shifting>
-inline void first_stage_transport(const ParticleStore& s, std::size_t i, bool fluid, double h,
-                                  double& tx, double& ty) {
-  tx = s.vx[i];
-  ty = s.vy[i];
-  if constexpr (Momentum) {
-    if (!fluid) return;  // buffers (and a prescribed flow) keep u over the step
-    tx -= h * rate_or_zero(s.ax_first[i]);
-    ty -= h * rate_or_zero(s.ay_first[i]);
-    if constexpr (Shifting) {
-      tx += rate_or_zero(s.sx_first[i]);
-      ty += rate_or_zero(s.sy_first[i]);
+// The first stage's velocities of particle i, recovered from its midpoint state (h = dt/2):
+// u0 = u_h - h a0, and the transport velocity u0 + du0 its position moved with (eq. (10)).
+// Momentum and Shifting: what the scheme's fluid particles carry; `fluid`: whether i is one
+// (buffers, and every particle of a prescribed flow, keep u over the step). `rate` reads a
+// first-stage rate: rate_or_zero, or one that also counts the non-finite ones.
+struct FirstStage {
+  double vx, vy;  // u0
+  double tx, ty;  // u0 + du0
+};
+template <bool Momentum, bool Shifting, class Rate>
+inline FirstStage first_stage_velocity(const ParticleStore& s, std::size_t i, bool fluid, double h,
+                                       Rate&& rate) {
+  FirstStage f{s.vx[i], s.vy[i], 0.0, 0.0};
+  if constexpr (Momentum)
+    if (fluid) {
+      f.vx -= h * rate(s.ax_first[i]);
+      f.vy -= h * rate(s.ay_first[i]);
     }
-  }
+  f.tx = f.vx;
+  f.ty = f.vy;
+  if constexpr (Momentum && Shifting)
+    if (fluid) {
+      f.tx += rate(s.sx_first[i]);
+      f.ty += rate(s.sy_first[i]);
+    }
+  return f;
 }
 
 }  // namespace adrsph::midpoint

@@ -158,10 +158,10 @@ void SphSolver::next_displacement(double a, bool from_start) {
     // start of the step (stage 2, recovered as advance() recovers it) or x (stage 1).
     double bx = s.x[i], by = s.y[i];
     if (from_start) {
-      double tx0, ty0;
-      midpoint::first_stage_transport<true, false>(s, i, s.kind[i] == kFluidByte, h, tx0, ty0);
-      bx -= h * tx0;
-      by -= h * ty0;
+      const midpoint::FirstStage f0 = midpoint::first_stage_velocity<true, false>(
+          s, i, s.kind[i] == kFluidByte, h, midpoint::rate_or_zero);
+      bx -= h * f0.tx;
+      by -= h * f0.ty;
     }
     next_dx_[i] = static_cast<float>(bx + a * s.vx[i] - s.x[i]);
     next_dy_[i] = static_cast<float>(by + a * s.vy[i] - s.y[i]);
@@ -215,22 +215,18 @@ void SphSolver::advance(double dt) {
       nonfinite += finite_rate(r) ? 0 : 1;
       return rate_or_zero(r);
     };
-    // q0: the current state at stage 1; at stage 2 recovered, q0 = q_h - dt/2 f0, as
-    // midpoint::first_stage_transport does for the positions.
+    // q0: the current state at stage 1; at stage 2 recovered, q0 = q_h - dt/2 f0.
     double x0 = s.x[i], y0 = s.y[i];
+    double vx0 = s.vx[i], vy0 = s.vy[i];
+    if constexpr (Stage == 2) {
+      const midpoint::FirstStage f0 =
+          midpoint::first_stage_velocity<S::momentum, S::shifting>(s, i, fluid, h, take);
+      x0 -= h * f0.tx;
+      y0 -= h * f0.ty;
+      vx0 = f0.vx;
+      vy0 = f0.vy;
+    }
     if (fluid && S::momentum) {
-      double vx0 = s.vx[i], vy0 = s.vy[i];
-      if constexpr (Stage == 2) {
-        vx0 -= h * take(s.ax_first[i]);
-        vy0 -= h * take(s.ay_first[i]);
-        double tx0 = vx0, ty0 = vy0;
-        if constexpr (S::shifting) {
-          tx0 += take(s.sx_first[i]);
-          ty0 += take(s.sy_first[i]);
-        }
-        x0 -= h * tx0;
-        y0 -= h * ty0;
-      }
       double tx = s.vx[i], ty = s.vy[i];
       if constexpr (S::shifting) {
         tx += take(s.sx[i]);
@@ -243,10 +239,6 @@ void SphSolver::advance(double dt) {
     } else {
       // Inlet (prescribed profile), outlet (frozen velocity), prescribed-flow fluid: u is
       // constant over the step.
-      if constexpr (Stage == 2) {
-        x0 -= h * s.vx[i];
-        y0 -= h * s.vy[i];
-      }
       s.x[i] = x0 + a * s.vx[i];
       s.y[i] = y0 + a * s.vy[i];
     }

@@ -45,7 +45,9 @@ void SphSolver::undo_step(double dt) {
   ParticleStore& s = store_;
   const ParticleStore::Needs& needs = s.needs();
   const double h = 0.5 * dt;
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  const std::size_t n = s.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t k = s.kind[i];
     if (k == kWallByte) continue;
     const bool fluid = k == kFluidByte;
