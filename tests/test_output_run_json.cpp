@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
 
 #include "adrsph/io/run_json.hpp"
 #include "io_test_util.hpp"
@@ -145,4 +147,16 @@ TEST(RunJson, WritesTheFile) {
 }
 
 }  // namespace
+
+// The binary names itself: the release CMake declares and the commit it was built from
+// (cmake/build_info.cmake), so that a result in a report can be traced to its code.
+TEST(RunJson, NamesTheBuild) {
+  const auto j = nlohmann::json::parse(run_json_text(sample_case(), sample_result(), {}));
+  EXPECT_EQ(j["version"], ADRSPH_PROJECT_VERSION);
+  ASSERT_TRUE(j["commit"].is_string());
+  const std::string commit = j["commit"].get<std::string>();
+  EXPECT_TRUE(commit == "unknown" || std::regex_match(commit, std::regex("[0-9a-f]{12}(-dirty)?")))
+      << commit;
+}
+
 }  // namespace adrsph

@@ -254,6 +254,7 @@ class Run:
         self.t_reached = num(info.get("t_reached"))
         self.t_steady = num(info.get("t_steady"))
         self.restarts = info.get("restarts")
+        self.commit = info.get("commit") or ""  # absent in runs made before it was recorded
         self.steady_criterion = info.get("steady_criterion")
         self.warm_wall = num((info.get("warm_start") or {}).get("wall_seconds"))
 
@@ -487,7 +488,7 @@ def section_runs_table(runs):
               "wall [s]", "steps", "particle-steps/s", "peak memory [MB]", "restarts",
               "t_reached [s]", "t_steady [s]", "outlet error", "worst station error",
               "max probe-line error", "C x=25", "C x=50", "C x=100", "error x=25",
-              "error x=50", "error x=100", "steady criterion", "message"]
+              "error x=50", "error x=100", "steady criterion", "message", "commit"]
     csv_rows, md_rows = [], []
     for r in runs:
         csv_rows.append([r.name, r.group, r.state, r.scheme or "", r.flow or "",
@@ -498,7 +499,8 @@ def section_runs_table(runs):
                          r.max_line_err] + [r.station_c(x) for x in STATIONS] +
                         [r.err[x] for x in STATIONS] +
                         [json.dumps(r.steady_criterion) if r.steady_criterion is not None
-                         else "", r.message if r.state == FAILED else ""])
+                         else "", r.message if r.state == FAILED else "",
+                         r.commit])
         if r.state == NOT_RUN:
             md_rows.append([r.name, r.scheme or "-", r.flow or "-", fmt_pe(r.pe),
                             fnum(r.dx, "{:g}"), "yes" if r.warm else "no"] + ["not run"] +
@@ -952,6 +954,16 @@ def write_report(runs_dir, report_dir, warm_tol=0.0005, contours=True):
     for r in runs:
         who = "prescribed flow" if r.kind == "prescribed" else f"{r.scheme or '?'} ({r.kind})"
         steps.setdefault(who, set()).add(str(r.sets.get("time.cfl", "that of the base case")))
+    # The code that made the numbers: run.json's `commit` (the binary that finished the run).
+    commits = {}
+    for r in runs:
+        if r.state != NOT_RUN:
+            commits.setdefault(r.commit or "not recorded", []).append(r.name)
+    if commits:
+        md.append("Commits that made the runs (run.json `commit`; \"not recorded\": made before "
+                  "run.json named it, summary.csv has it per run): " +
+                  "; ".join(f"{c}: {len(v)} run{'s' if len(v) != 1 else ''}"
+                            for c, v in sorted(commits.items())) + ".\n")
     if steps:
         md.append("Time steps, `time.cfl` (acoustic Courant number; advective in the prescribed "
                   "flow): " + "; ".join(f"{who} {', '.join(sorted(v))}"

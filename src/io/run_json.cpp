@@ -1,6 +1,8 @@
 // run.json writer (nlohmann::ordered_json keeps the documented key order).
 #include "adrsph/io/run_json.hpp"
 
+#include "io/build_info.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -127,7 +129,8 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["steady_criterion"] = Json{{"tol", number(r.steady_criterion.tol)},
                                {"window", number(r.steady_criterion.window)},
                                {"t_min", number(r.steady_criterion.t_min)}};
-  j["version"] = "0.1.0";
+  j["version"] = build_version();
+  j["commit"] = build_commit();
   j["results_version"] = kResultsVersion;
   return j.dump(2) + "\n";
 }
