@@ -24,6 +24,7 @@
 #include "adrsph/probes.hpp"
 #include "adrsph/simulation.hpp"
 #include "cli/commands.hpp"
+#include "cli/machine_load.hpp"
 #include "cli/run_observer.hpp"
 #include "cli/run_preflight.hpp"
 #include "cli/run_summary.hpp"
@@ -99,24 +100,6 @@ std::vector<std::string> write_outputs(const fs::path& dir, const Case& c, const
     files.push_back("fields.xmf");
   }
   return files;
-}
-
-// Processes ready to run on the machine right now besides this one (/proc/loadavg's
-// runnable count), -1 when unknown. A CPU-bound neighbour is nearly always runnable; unlike
-// the load average this does not remember a run that has just ended.
-int other_runnable() {
-  std::ifstream in("/proc/loadavg");
-  double l1 = 0, l5 = 0, l15 = 0;
-  int runnable = 0, total = 0;
-  char slash = 0;
-  if (!(in >> l1 >> l5 >> l15 >> runnable >> slash >> total) || slash != '/') return -1;
-  return std::max(0, runnable - 1);
-}
-
-// The machine's 1-minute load average, -1 when unknown.
-double load_average() {
-  double load[1];
-  return ::getloadavg(load, 1) == 1 ? load[0] : -1.0;
 }
 
 std::string read_text(const fs::path& file) {
