@@ -152,8 +152,8 @@ class SphSolver {
   void react_network(double dt);   // react() for several species
   void update_buffers(double dt);  // inflow rows, kinds, crossings
   // A feed that varies in time (species/inlet_feed.hpp): the inflow buffer and the rows fed
-  // from now on carry the inlet value at time t.
-  void apply_feed(double t);
+  // from now on carry the feed's mean over [t, t + dt] (its value at t when dt = 0).
+  void apply_feed(double t, double dt);
   bool report_lost();
   // The conventional scheme's summation density at the positions of the next evaluation,
   // taken by the force pass (pass_context.hpp). Valid until the particles are re-sorted or a
