@@ -58,6 +58,7 @@ TEST(RunJson, EveryKey) {
   EXPECT_EQ(j["fluid_particles"], 4000);
   EXPECT_EQ(j["threads"], 2);
   EXPECT_EQ(j["overrides"], nlohmann::json::array({"species.D=1"}));
+  EXPECT_EQ(j["wall_images"], false);
   EXPECT_DOUBLE_EQ(j["load_average"]["start"].get<double>(), 0.5);
   EXPECT_DOUBLE_EQ(j["load_average"]["end"].get<double>(), 0.75);
   EXPECT_DOUBLE_EQ(j["t_end"].get<double>(), 10.0);

@@ -75,6 +75,11 @@ struct Case {
     int outlet_layers = 4;  // `particles.outlet_layers`, outflow buffer depth in dx
     double skin = 0.05;     // `particles.skin`, neighbour-list skin as a fraction of 3h
     double jitter = 0.0;    // `particles.jitter`, random start offsets of the fluid, fraction of dx
+    // `particles.wall_images`: the species diffusion sum mirrors each neighbour across the
+    // wall (method of images, species/wall_images.hpp) instead of only skipping the walls.
+    // Both give no flux through the walls; the images also give the first rows their full
+    // axial diffusion (docs/physics.md, "Species").
+    bool wall_images = false;
     // The skin when a prescribed-flow case does not set one. Its particles move exactly with
     // u(y), so nothing but the list limits their step, and at the default Courant number
     // (0.25) a 0.05 skin is used up every step: lists were rebuilt every step, 63% of the

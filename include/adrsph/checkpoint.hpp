@@ -51,7 +51,9 @@ struct SolverSnapshot {
   double t = 0.0;
   long steps = 0, lost = 0, lost_reported = 0, rebuilds = 0;
   double particle_steps = 0.0;
-  std::array<double, 4> ledger{};     // inflow, outflow, buffer exchange, reaction
+  // Per species (4 values each, up to 4 species): inflow, outflow, buffer exchange, reaction.
+  // A checkpoint written before the ledger was kept per species holds the first 4 only.
+  std::array<double, 16> ledger{};
   long entered = 0, left = 0;         // boundary crossings (their species: ledger)
   std::vector<double> phase_seconds;  // per PhaseTimers phase
 };

@@ -1,5 +1,6 @@
 #include "boundaries/channel_scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -92,23 +93,29 @@ void ChannelScene::advance_inflow(double dt) {
 ChannelScene::Crossings ChannelScene::update_kinds(ParticleStore& s) const {
   const std::size_t n = s.size();
   const double length = length_;
+  const int count = 1 + s.needs().more_species;
+  auto conc = [&s](int e, std::size_t i) { return e == 0 ? s.c[i] : s.c_more[e - 1][i]; };
   long entered = 0, left = 0;
-  double species_in = 0.0, species_out = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : entered, left, species_in, species_out)
+  double in[Case::kMaxSpecies] = {}, out[Case::kMaxSpecies] = {};
+#pragma omp parallel for schedule(static) reduction(+ : entered, left, in[:Case::kMaxSpecies], \
+                                                        out[:Case::kMaxSpecies])
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Kind>(s.kind[i]);
     if (k == Kind::inlet && s.x[i] >= 0.0) {
       s.set_kind(i, Kind::fluid);
       ++entered;
-      species_in += s.mass / s.rho[i] * s.c[i];
+      for (int e = 0; e < count; ++e) in[e] += s.mass / s.rho[i] * conc(e, i);
     }
     if (k == Kind::fluid && s.x[i] >= length) {
       s.set_kind(i, Kind::outlet);
       ++left;
-      species_out += s.mass / s.rho[i] * s.c[i];
+      for (int e = 0; e < count; ++e) out[e] += s.mass / s.rho[i] * conc(e, i);
     }
   }
-  return {entered, left, species_in, species_out};
+  Crossings c{entered, left, {}, {}};
+  std::copy_n(in, Case::kMaxSpecies, c.species_in.begin());
+  std::copy_n(out, Case::kMaxSpecies, c.species_out.begin());
+  return c;
 }
 
 void ChannelScene::feed_and_drain(ParticleStore& s, std::vector<char>& keep, long& lost) {

@@ -47,10 +47,10 @@ class ChannelScene {
   // Move the inflow row generators with the rows (called every step).
   void advance_inflow(double dt);
   // Particles that crossed the inlet plane (inlet -> fluid) and the outlet plane
-  // (fluid -> outlet), with the species they carried (sum of V C).
+  // (fluid -> outlet), with the species they carried (sum of V C, per species).
   struct Crossings {
     long entered = 0, left = 0;
-    double species_in = 0.0, species_out = 0.0;
+    std::array<double, Case::kMaxSpecies> species_in{}, species_out{};
   };
   // Kind changes that keep indices: inlet -> fluid at x >= 0, fluid -> outlet at x >= L.
   Crossings update_kinds(ParticleStore& s) const;

@@ -282,6 +282,8 @@ std::vector<KeyDef> make_keys() {
       "particles.skin", [](Case & c) -> auto& { return c.particles.skin; }));
   k.push_back(number(
       "particles.jitter", [](Case & c) -> auto& { return c.particles.jitter; }));
+  k.push_back(boolean(
+      "particles.wall_images", [](Case & c) -> auto& { return c.particles.wall_images; }));
 
   k.push_back(number(
       "fluid.rho0", [](Case & c) -> auto& { return c.fluid.rho0; }));

@@ -94,6 +94,12 @@ void check_geometry(Checker& k, const Case& c) {
   k.range("particles.skin", c.particles.skin, 0.0, false, 1.0, false);
   // Below half a spacing no particle leaves the channel or passes its neighbour's site.
   k.range("particles.jitter", c.particles.jitter, 0.0, false, 0.45, false);
+  // Each particle is mirrored across the wall on its own side only; the other wall's images
+  // are out of reach when the half width exceeds the kernel support 3h (h = dx).
+  k.require(!c.particles.wall_images || c.geometry.half_width > 3.0 * dx, "particles.wall_images",
+            "expected false unless half_width > 3 dx (the kernel support; got half_width = " +
+                num(c.geometry.half_width) + ", dx = " + num(dx) +
+                "): the images of both walls would overlap");
 }
 
 void check_fluid_species(Checker& k, const Case& c) {

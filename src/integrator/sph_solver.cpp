@@ -15,6 +15,7 @@
 #include "species/feed_integral.hpp"
 #include "species/inlet_feed.hpp"
 #include "species/reaction_kinetics.hpp"
+#include "species/wall_images.hpp"
 
 namespace adrsph {
 
@@ -28,6 +29,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
   phys_.delta_h_c0_2 = 2.0 * c.modern.delta * h * c.c0();
   phys_.diffusivity = c.species.D;
   phys_.max_diffusivity = c.species.D;
+  phys_.wall_image_y = c.particles.wall_images ? c.geometry.half_width : 0.0;
   for (int e = 0; e + 1 < c.species_count(); ++e) {
     phys_.more_diffusivity[static_cast<std::size_t>(e)] = c.more_species[e].D;
     phys_.max_diffusivity = std::max(phys_.max_diffusivity, c.more_species[e].D);
@@ -73,10 +75,11 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
   rebuild();
 }
 
-double SphSolver::species_inventory() const {
+double SphSolver::species_inventory(int species) const {
+  const std::vector<double>& c = species == 0 ? store_.c : store_.c_more[species - 1];
   double total = 0.0;
   for (std::size_t i = 0; i < store_.size(); ++i)
-    if (store_.kind[i] == kFluidByte) total += store_.mass / store_.rho[i] * store_.c[i];
+    if (store_.kind[i] == kFluidByte) total += store_.mass / store_.rho[i] * c[i];
   return total;
 }
 
@@ -189,6 +192,7 @@ void SphSolver::evaluate_impl(double a_next, bool from_start) {
   }
   ScopedPhase timer(timers_, Phase::forces);
   interaction_pass<S, Ale, !Split, Net>(store_, ctx);
+  if (!Split && phys_.wall_image_y > 0.0) add_wall_image_diffusion(store_, ctx);
 }
 
 // Explicit midpoint (integrator/midpoint.hpp). Stage 1: q_h = q0 + dt/2 f(q0). Stage 2:
@@ -290,15 +294,21 @@ bool SphSolver::step_impl(double dt) {
   store_.keep_first_stage_rates();
   evaluate_impl<S, Ale, Split, Net>(dt, true);
   density_predicted_ = S::summation_density && predict_density_;
-  double exchange = 0.0;         // with the buffers, for the ledger once the step is kept
+  // With the buffers, per species, for the ledger once the step is kept.
+  std::array<double, Case::kMaxSpecies> exchange{};
   if (!Split && track_balance_)  // (sub-cycled diffusion accounts for its own exchange)
-    exchange += dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_});
+    for (int e = 0; e < case_.species_count(); ++e)
+      exchange[static_cast<std::size_t>(e)] =
+          dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_},
+                                            e == 0 ? store_.c.data() : store_.c_more[e - 1].data(),
+                                            case_.species_at(e).D);
   advance<S, 2, Net>(dt);
-  if constexpr (Split) exchange += diffuse_species(dt);
+  if constexpr (Split) exchange = diffuse_species(dt);
   // Guards before anything outside the particle state changes: a failed step restores the
   // start state and leaves kinds, inflow rows, ledger and time as they were.
   if (!check_state(dt)) return false;
-  ledger_.buffer_exchange += exchange;
+  for (int e = 0; e < Case::kMaxSpecies; ++e)
+    ledgers_[static_cast<std::size_t>(e)].buffer_exchange += exchange[static_cast<std::size_t>(e)];
   react(dt);
   update_buffers(dt);
   t_ += dt;
@@ -308,7 +318,7 @@ bool SphSolver::step_impl(double dt) {
   return report_lost();
 }
 
-double SphSolver::diffuse_species(double dt) {
+std::array<double, Case::kMaxSpecies> SphSolver::diffuse_species(double dt) {
   ScopedPhase timer(timers_, Phase::species);
   // Stages from this step's size (a final short step needs fewer).
   const auto plan = DiffusionSubcycler::plan(dt / limits_.diffusion);
@@ -345,7 +355,7 @@ void SphSolver::react(double dt) {
     store_.c[i] = c;
     consumed += mass / store_.rho[i] * (c_before - c);
   }
-  ledger_.reaction += consumed;
+  ledgers_[0].reaction += consumed;
 }
 
 void SphSolver::react_network(double dt) {
@@ -354,22 +364,25 @@ void SphSolver::react_network(double dt) {
   const std::size_t n = store_.size();
   const int count = case_.species_count();
   const double mass = store_.mass;
-  double consumed = 0.0;  // of the first species (the ledger's): net, what it also gains
+  // Net consumption per species (negative for a product).
+  double consumed[Case::kMaxSpecies] = {};
   // Each particle is a batch reactor over the step (species/reaction_kinetics.hpp), split
   // from the transport as react() is.
-#pragma omp parallel for schedule(static) reduction(+ : consumed)
+#pragma omp parallel for schedule(static) reduction(+ : consumed[:Case::kMaxSpecies])
   for (std::size_t i = 0; i < n; ++i) {
     if (store_.kind[i] != kFluidByte) continue;
     std::array<double, Case::kMaxSpecies> conc{};
     conc[0] = store_.c[i];
     for (int e = 1; e < count; ++e) conc[e] = store_.c_more[e - 1][i];
+    const std::array<double, Case::kMaxSpecies> before = conc;
     adrsph::react_network(case_, store_.x[i], store_.y[i],
                           std::span(conc).first(static_cast<std::size_t>(count)), dt);
-    consumed += mass / store_.rho[i] * (store_.c[i] - conc[0]);
+    const double vol = mass / store_.rho[i];
+    for (int e = 0; e < count; ++e) consumed[e] += vol * (before[e] - conc[e]);
     store_.c[i] = conc[0];
     for (int e = 1; e < count; ++e) store_.c_more[e - 1][i] = conc[e];
   }
-  ledger_.reaction += consumed;
+  for (int e = 0; e < count; ++e) ledgers_[static_cast<std::size_t>(e)].reaction += consumed[e];
 }
 
 void SphSolver::apply_feed(double t, double dt) {
@@ -394,8 +407,10 @@ void SphSolver::update_buffers(double dt) {
   const auto crossed = scene_.update_kinds(store_);
   crossings_.entered += crossed.entered;
   crossings_.left += crossed.left;
-  ledger_.inflow += crossed.species_in;
-  ledger_.outflow += crossed.species_out;
+  for (std::size_t e = 0; e < ledgers_.size(); ++e) {
+    ledgers_[e].inflow += crossed.species_in[e];
+    ledgers_[e].outflow += crossed.species_out[e];
+  }
 }
 
 bool SphSolver::step(double dt) {

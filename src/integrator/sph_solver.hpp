@@ -82,9 +82,12 @@ class SphSolver {
   const Crossings& boundary_crossings() const { return crossings_; }
   // Track the diffusive exchange with the buffers (one extra neighbour pass per step).
   void track_species_balance(bool on) { track_balance_ = on; }
-  const SpeciesLedger& species_ledger() const { return ledger_; }
-  // Moles of species carried by the fluid particles: sum V C with V = m / rho.
-  double species_inventory() const;
+  // Of species `species` (0: the first, 1..: the network's others, Case::species_at).
+  const SpeciesLedger& species_ledger(int species = 0) const {
+    return ledgers_[static_cast<std::size_t>(species)];
+  }
+  // Moles of species `species` carried by the fluid particles: sum V C with V = m / rho.
+  double species_inventory(int species = 0) const;
   std::size_t fluid_count() const;
   double mean_neighbours() const { return list_.mean_neighbours(); }
   long list_rebuilds() const { return rebuilds_; }
@@ -147,7 +150,8 @@ class SphSolver {
   void undo_step(double dt);
   long bad_rates_ = 0;  // fluid particles with a non-finite rate this step (taken as zero)
   // The phases of a step after the transport (step_impl reads as this list).
-  double diffuse_species(double dt);  // sub-cycled diffusion; returns the buffer exchange
+  // Sub-cycled diffusion; returns the buffer exchange of each species.
+  std::array<double, Case::kMaxSpecies> diffuse_species(double dt);
   void react(double dt);
   void react_network(double dt);   // react() for several species
   void update_buffers(double dt);  // inflow rows, kinds, crossings
@@ -188,7 +192,7 @@ class SphSolver {
   long lost_ = 0;
   long lost_reported_ = 0;  // lost_ at the last failure report
   Crossings crossings_;
-  SpeciesLedger ledger_;
+  std::array<SpeciesLedger, Case::kMaxSpecies> ledgers_{};  // per species
   DiffusionSubcycler subcycler_;
   bool track_balance_ = false;
   double particle_steps_ = 0.0;

@@ -27,7 +27,12 @@ SolverSnapshot SphSolver::snapshot() const {
   s.lost_reported = lost_reported_;
   s.rebuilds = rebuilds_;
   s.particle_steps = particle_steps_;
-  s.ledger = {ledger_.inflow, ledger_.outflow, ledger_.buffer_exchange, ledger_.reaction};
+  static_assert(sizeof(s.ledger) == sizeof(double) * 4 * Case::kMaxSpecies);
+  for (int e = 0; e < Case::kMaxSpecies; ++e) {
+    const SpeciesLedger& l = ledgers_[static_cast<std::size_t>(e)];
+    std::copy_n(std::array{l.inflow, l.outflow, l.buffer_exchange, l.reaction}.begin(), 4,
+                s.ledger.begin() + 4 * e);
+  }
   s.entered = crossings_.entered;
   s.left = crossings_.left;
   s.phase_seconds = timers_.totals();
@@ -69,7 +74,10 @@ void SphSolver::restore(const SolverSnapshot& s) {
   lost_reported_ = s.lost_reported;
   rebuilds_ = s.rebuilds;
   particle_steps_ = s.particle_steps;
-  ledger_ = {s.ledger[0], s.ledger[1], s.ledger[2], s.ledger[3]};
+  for (int e = 0; e < Case::kMaxSpecies; ++e) {
+    const double* l = s.ledger.data() + 4 * e;
+    ledgers_[static_cast<std::size_t>(e)] = {l[0], l[1], l[2], l[3]};
+  }
   crossings_ = {s.entered, s.left};
   timers_.set_totals(s.phase_seconds);
 }

@@ -121,6 +121,7 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["load_average"] = Json{{"start", ctx.load_start >= 0 ? Json(ctx.load_start) : Json(nullptr)},
                            {"end", ctx.load_end >= 0 ? Json(ctx.load_end) : Json(nullptr)}};
   j["ale"] = c.species.ale;
+  j["wall_images"] = c.particles.wall_images;
   j["peak_rss_bytes"] = number(r.peak_rss_bytes);
   j["engine_bytes"] = {{"particles", r.engine_bytes.particles},
                        {"neighbour_lists", r.engine_bytes.neighbour_lists},

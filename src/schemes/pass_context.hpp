@@ -21,6 +21,9 @@ struct PhysicsConstants {
   // D of all (the sub-cycled diffusion's weights and its step limit).
   std::array<double, ParticleStore::kMaxMore> more_diffusivity{};
   double max_diffusivity = 0.0;
+  // Walls at y = +-wall_image_y mirror the species in the diffusion sum (particles.wall_images,
+  // species/wall_images.hpp); 0: the walls are only skipped.
+  double wall_image_y = 0.0;
   TaitEos eos;
   ShiftingVelocity shifting;  // set per step (depends on dt)
 };

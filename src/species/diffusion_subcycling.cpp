@@ -3,11 +3,14 @@
 #include <cmath>
 
 #include "species/species_rate.hpp"
+#include "species/wall_images.hpp"
 
 namespace adrsph {
 
 namespace {
-template <class Neighbours>
+// Images = particles.wall_images (species/wall_images.hpp), a template parameter so that the
+// pair loop carries no branch on it.
+template <bool Images, class Neighbours>
 void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const Neighbours form,
                           float* w) {
   const std::size_t n = s.size();
@@ -16,6 +19,7 @@ void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const 
   const float* vol = s.vol.data();
   const float* dmask = s.diffusion_mask.data();
   const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.max_diffusivity;
+  const double wall_y = ctx.phys.wall_image_y;
   const QuinticKernel kernel = ctx.kernel;  // local copy: see interaction_pass.hpp
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -30,7 +34,11 @@ void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const 
     for (std::uint32_t k = 0; k < len; ++k) {
       const std::uint32_t j = nb[k];
       const double dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-      const double lap_weight = kernel.laplacian_weight(r2, eta2);
+      double lap_weight = kernel.laplacian_weight(r2, eta2);
+      // The image of j across the wall (species/wall_images.hpp): the same C_j, so its weight
+      // adds to the pair's; laplacian_weight is 0 beyond the support.
+      if constexpr (Images)
+        lap_weight += kernel.laplacian_weight(wall_image_r2(dx, yi, y[j], wall_y), eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
       wi[k] = static_cast<float>(
           species_diffusion_pair<double>(diffusivity, voli, vol[j], lap_weight, 1.0, dmask[j]));
@@ -73,8 +81,12 @@ double rates_with(const ParticleStore& s, const PassContext& ctx, const Neighbou
 
 void DiffusionSubcycler::compute_weights(const ParticleStore& s, const PassContext& ctx) {
   weight_.resize(ctx.neighbours.total());
-  ctx.neighbours.with_indices(
-      [&](auto form) { compute_weights_with(s, ctx, form, weight_.data()); });
+  ctx.neighbours.with_indices([&](auto form) {
+    if (ctx.phys.wall_image_y > 0.0)
+      compute_weights_with<true>(s, ctx, form, weight_.data());
+    else
+      compute_weights_with<false>(s, ctx, form, weight_.data());
+  });
 }
 
 double DiffusionSubcycler::rates(const ParticleStore& s, const PassContext& ctx,
@@ -99,19 +111,21 @@ DiffusionSubcycler::Plan DiffusionSubcycler::plan(double ratio) {
   return p;
 }
 
-double DiffusionSubcycler::advance(ParticleStore& s, const PassContext& ctx, double dt, Plan plan,
-                                   bool track) {
+std::array<double, Case::kMaxSpecies> DiffusionSubcycler::advance(ParticleStore& s,
+                                                                  const PassContext& ctx, double dt,
+                                                                  Plan plan, bool track) {
   compute_weights(s, ctx);  // the configuration is frozen over the step
-  double exchange = 0.0;
+  std::array<double, Case::kMaxSpecies> exchange{};
   const double h = dt / plan.supersteps;
   const double d_max = ctx.phys.max_diffusivity;
   auto factor = [d_max](double d) { return d_max > 0.0 ? d / d_max : 0.0; };
   const double f0 = factor(ctx.phys.diffusivity);
   for (int k = 0; k < plan.supersteps; ++k)
-    exchange += superstep(s, s.c, f0, ctx, h, plan.stages, track);
+    exchange[0] += superstep(s, s.c, f0, ctx, h, plan.stages, track);
   for (int e = 0; e < s.needs().more_species; ++e)
     for (int k = 0; k < plan.supersteps; ++k)
-      superstep(s, s.c_more[e], factor(ctx.phys.more_diffusivity[e]), ctx, h, plan.stages, false);
+      exchange[static_cast<std::size_t>(e) + 1] += superstep(
+          s, s.c_more[e], factor(ctx.phys.more_diffusivity[e]), ctx, h, plan.stages, track);
   return exchange;
 }
 

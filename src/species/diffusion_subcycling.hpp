@@ -9,8 +9,10 @@
 // costs one sparse product.
 #pragma once
 
+#include <array>
 #include <vector>
 
+#include "adrsph/case.hpp"
 #include "schemes/pass_context.hpp"
 
 namespace adrsph {
@@ -27,10 +29,11 @@ class DiffusionSubcycler {
   // Integrate dC/dt = sum_j w_ij (C_i - C_j) over dt by RKL2 super-steps for the fluid
   // particles (buffers keep their C), for every species: the weights are computed once with
   // the largest D and scaled by D_s / D_max for each (the plan, set by the largest D, is
-  // stable for the smaller ones). With `track`, returns the moles of the first species
-  // diffused in from the inflow and outflow buffers (sum_i V_i * flux), for the species
-  // balance; else 0.
-  double advance(ParticleStore& s, const PassContext& ctx, double dt, Plan plan, bool track);
+  // stable for the smaller ones). With `track`, returns the moles of each species diffused
+  // in from the inflow and outflow buffers (sum_i V_i * flux), for the species balance;
+  // else 0.
+  std::array<double, Case::kMaxSpecies> advance(ParticleStore& s, const PassContext& ctx, double dt,
+                                                Plan plan, bool track);
 
   std::size_t bytes() const { return weight_.capacity() * sizeof(float); }
 

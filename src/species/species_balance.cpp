@@ -1,11 +1,13 @@
 #include "schemes/pass_context.hpp"
 #include "species/species_rate.hpp"
+#include "species/wall_images.hpp"
 
 namespace adrsph {
 
 namespace {
 template <class Neighbours>
-double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const Neighbours form) {
+double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const Neighbours form,
+                          const double* c, double diffusivity) {
   const std::size_t n = s.size();
   const double eta2 = ctx.phys.eta2;
   double total = 0.0;
@@ -20,9 +22,12 @@ double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const 
       const std::uint32_t j = nb[k];
       if (s.kind[j] != kInletByte && s.kind[j] != kOutletByte) continue;
       const double dx = s.x[i] - s.x[j], dy = s.y[i] - s.y[j], r2 = dx * dx + dy * dy;
-      const double lap_weight = ctx.kernel.laplacian_weight(r2, eta2);
-      rate += species_diffusion_pair<double>(ctx.phys.diffusivity, s.vol[i], s.vol[j], lap_weight,
-                                             s.c[i] - s.c[j], s.diffusion_mask[j]);
+      double lap_weight = ctx.kernel.laplacian_weight(r2, eta2);
+      if (ctx.phys.wall_image_y > 0.0)  // the buffer neighbour's image (species/wall_images.hpp)
+        lap_weight += ctx.kernel.laplacian_weight(
+            wall_image_r2(dx, s.y[i], s.y[j], ctx.phys.wall_image_y), eta2);
+      rate += species_diffusion_pair<double>(diffusivity, s.vol[i], s.vol[j], lap_weight,
+                                             c[i] - c[j], s.diffusion_mask[j]);
     }
     total += s.vol[i] * rate;
   }
@@ -31,8 +36,10 @@ double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const 
 
 }  // namespace
 
-double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx) {
-  return ctx.neighbours.with_indices([&](auto form) { return exchange_rate_with(s, ctx, form); });
+double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx, const double* c,
+                                    double diffusivity) {
+  return ctx.neighbours.with_indices(
+      [&](auto form) { return exchange_rate_with(s, ctx, form, c, diffusivity); });
 }
 
 }  // namespace adrsph

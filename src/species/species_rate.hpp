@@ -33,10 +33,12 @@ inline double species_decay(double k, double dt) {
 
 // Moles exchanged with the inflow/outflow buffers by diffusion (the only species flux
 // across the open boundaries besides the particles that cross them), summed over the fluid
-// particles: sum_i V_i sum_{j in buffers} diffusion pair term. Diagnostic for the species
-// balance; not part of the stepping.
+// particles: sum_i V_i sum_{j in buffers} diffusion pair term, for the species of
+// concentration `c` and diffusivity D. Diagnostic for the species balance; not part of the
+// stepping.
 struct ParticleStore;
 struct PassContext;
-double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx);
+double species_buffer_exchange_rate(const ParticleStore& s, const PassContext& ctx, const double* c,
+                                    double diffusivity);
 
 }  // namespace adrsph
