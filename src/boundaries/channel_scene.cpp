@@ -94,7 +94,6 @@ ChannelScene::Crossings ChannelScene::update_kinds(ParticleStore& s) const {
   const std::size_t n = s.size();
   const double length = length_;
   const int count = 1 + s.needs().more_species;
-  auto conc = [&s](int e, std::size_t i) { return e == 0 ? s.c[i] : s.c_more[e - 1][i]; };
   long entered = 0, left = 0;
   double in[Case::kMaxSpecies] = {}, out[Case::kMaxSpecies] = {};
 #pragma omp parallel for schedule(static) reduction(+ : entered, left, in[:Case::kMaxSpecies], \
@@ -104,12 +103,12 @@ ChannelScene::Crossings ChannelScene::update_kinds(ParticleStore& s) const {
     if (k == Kind::inlet && s.x[i] >= 0.0) {
       s.set_kind(i, Kind::fluid);
       ++entered;
-      for (int e = 0; e < count; ++e) in[e] += s.mass / s.rho[i] * conc(e, i);
+      for (int e = 0; e < count; ++e) in[e] += s.mass / s.rho[i] * s.concentration(e)[i];
     }
     if (k == Kind::fluid && s.x[i] >= length) {
       s.set_kind(i, Kind::outlet);
       ++left;
-      for (int e = 0; e < count; ++e) out[e] += s.mass / s.rho[i] * conc(e, i);
+      for (int e = 0; e < count; ++e) out[e] += s.mass / s.rho[i] * s.concentration(e)[i];
     }
   }
   Crossings c{entered, left, {}, {}};

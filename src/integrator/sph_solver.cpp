@@ -76,7 +76,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
 }
 
 double SphSolver::species_inventory(int species) const {
-  const std::vector<double>& c = species == 0 ? store_.c : store_.c_more[species - 1];
+  const std::vector<double>& c = store_.concentration(species);
   double total = 0.0;
   for (std::size_t i = 0; i < store_.size(); ++i)
     if (store_.kind[i] == kFluidByte) total += store_.mass / store_.rho[i] * c[i];
@@ -300,8 +300,7 @@ bool SphSolver::step_impl(double dt) {
     for (int e = 0; e < case_.species_count(); ++e)
       exchange[static_cast<std::size_t>(e)] =
           dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_},
-                                            e == 0 ? store_.c.data() : store_.c_more[e - 1].data(),
-                                            case_.species_at(e).D);
+                                            store_.concentration(e).data(), case_.species_at(e).D);
   advance<S, 2, Net>(dt);
   if constexpr (Split) exchange = diffuse_species(dt);
   // Guards before anything outside the particle state changes: a failed step restores the
@@ -393,7 +392,7 @@ void SphSolver::apply_feed(double t, double dt) {
     const double c_in =
         dt > 0.0 ? feed_integral(species, t, t + dt) / dt : inlet_concentration(species, t);
     scene_.set_inlet_concentration(sp, c_in);
-    std::vector<double>& c = sp == 0 ? store_.c : store_.c_more[sp - 1];
+    std::vector<double>& c = store_.concentration(sp);
     const std::size_t n = store_.size();
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)

@@ -103,7 +103,7 @@ class SphSolver {
   ProbeSampler sampler(int species = 0) const {
     const int rings = std::max(
         1, static_cast<int>(std::ceil((kernel_.support + moved_abs_) / cutoff_ * (1.0 + 1e-12))));
-    const double* c = species == 0 ? store_.c.data() : store_.c_more[species - 1].data();
+    const double* c = store_.concentration(species).data();
     return ProbeSampler{store_, grid_, kernel_, rings, c};
   }
   int species_count() const { return 1 + store_.needs().more_species; }

@@ -47,6 +47,9 @@ struct ParticleStore {
   static constexpr int kMaxMore = Case::kMaxSpecies - 1;
   std::array<std::vector<double>, kMaxMore> c_more, c_more_start;
   std::array<std::vector<float>, kMaxMore> dc_more, dc_more_first;
+  // C of species e of the case (Case::species_at): c for e = 0, else c_more[e - 1].
+  std::vector<double>& concentration(int e) { return e == 0 ? c : c_more[e - 1]; }
+  const std::vector<double>& concentration(int e) const { return e == 0 ? c : c_more[e - 1]; }
 
   double mass = 0.0;  // every particle carries m = rho0 dx^2 (per unit depth)
 
