@@ -56,6 +56,15 @@ inline std::filesystem::path source_dir() {
   return ADRSPH_SOURCE_DIR;
 }
 
+// 'SOURCE/cases/NAME', quoted for a command line (built by appends: GCC 12 -Wrestrict
+// misfires on "'" + string + "'").
+inline std::string case_arg(const char* name) {
+  std::string s(1, '\'');
+  s += (source_dir() / "cases" / name).string();
+  s += '\'';
+  return s;
+}
+
 struct CommandResult {
   int exit_code = -1;
   std::string out, err;

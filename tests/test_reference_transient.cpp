@@ -284,13 +284,7 @@ TEST(ReferenceTransientKinetics, FirstOrderTableEqualsSpeciesK) {
 
 // ---- the command ----
 
-// (Built by appends: GCC 12 -Wrestrict misfires on "'" + string + "'".)
-std::string case_arg(const char* name) {
-  std::string s(1, '\'');
-  s += (test::source_dir() / "cases" / name).string();
-  s += '\'';
-  return s;
-}
+using test::case_arg;
 
 // A short Pe = 10 pulse on a coarse grid: the directory holds outlet.csv, case.toml and
 // run.json, and `adrsph rtd` reads it like a run's, --set values included.

@@ -1,7 +1,7 @@
 // The transient mode of the reference (docs/reference.md, "Transient mode"):
 //   dC/dt + u(y) dC/dx = D (C_xx + C_yy) - k C - R(C),   C(x, y, 0) = c_init,
 //   (R: the case's [[reaction]] tables, iterated inside each step as the steady solve does;
-//   one species: a network's reference is steady only, reference_network.hpp),
+//   one species: a network's is reference_network_transient.hpp),
 //   C(0, y, t) = C_in(t) (the same for every y), dC/dn = 0 at the walls, and at x = L the
 //   steady solver's outlet: no diffusive flux, advective face value = the last cell's,
 // on the steady solver's grid with its spatial discretisation (reference.hpp), BDF2 in time.
@@ -45,8 +45,8 @@ struct TransientOptions {
 };
 
 // The default step of a case (docs/reference.md, "Transient mode"): a fraction of the
-// shortest time scale the outlet response has to carry, the feed's shortest feature (a
-// pulse's width, a table's shortest segment) and the sample interval.
+// shortest time scale the outlet response has to carry, the shortest feature of any species'
+// feed (a pulse's width, a table's shortest segment) and the sample interval.
 inline constexpr double kTransientStepsPerFeature = 10.0;
 double default_transient_dt(const Case& c);
 // The step actually taken for a requested dt: sample_interval / ceil(sample_interval / dt),

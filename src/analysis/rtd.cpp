@@ -70,6 +70,15 @@ double l1_distance(const std::vector<double>& t, const std::vector<double>& a,
   return sum;
 }
 
+double interpolate(const std::vector<double>& t, const std::vector<double>& v, double at) {
+  const auto hi = std::upper_bound(t.begin(), t.end(), at);
+  if (hi == t.begin()) return v.front();
+  if (hi == t.end()) return v.back();
+  const std::size_t i = static_cast<std::size_t>(hi - t.begin());
+  const double w = (at - t[i - 1]) / (t[i] - t[i - 1]);
+  return v[i - 1] + w * (v[i] - v[i - 1]);
+}
+
 Rtd residence_time_distribution(const std::vector<OutletRow>& rows, const Case& c) {
   Rtd r;
   check_rtd_feed(c);

@@ -27,6 +27,9 @@ CurveMoments curve_moments(const std::vector<double>& t, const std::vector<doubl
 double l1_distance(const std::vector<double>& t, const std::vector<double>& a,
                    const std::vector<double>& b);
 
+// v(at) linear between the samples (t increasing), held at the end values outside them.
+double interpolate(const std::vector<double>& t, const std::vector<double>& v, double at);
+
 // A number in the messages of the analysis: 6 significant digits (%.6g).
 std::string rtd_number(double v);
 

@@ -7,16 +7,6 @@
 namespace adrsph::analysis {
 namespace {
 
-// Linear interpolation of (t, v) at `at`, t increasing and bracketing `at`.
-double interpolate(const std::vector<double>& t, const std::vector<double>& v, double at) {
-  const auto hi = std::upper_bound(t.begin(), t.end(), at);
-  if (hi == t.begin()) return v.front();
-  if (hi == t.end()) return v.back();
-  const std::size_t i = static_cast<std::size_t>(hi - t.begin());
-  const double w = (at - t[i - 1]) / (t[i] - t[i - 1]);
-  return v[i - 1] + w * (v[i] - v[i - 1]);
-}
-
 // The physical keys that shape the outlet response: the two cases should agree on them.
 std::vector<std::string> differences(const Case& run, const Case& ref) {
   std::vector<std::string> out;

@@ -10,8 +10,11 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include "adrsph/probes.hpp"
+
 #include "analysis/compare.hpp"
+#include "analysis/outlet_compare.hpp"
 #include "cli/commands.hpp"
 #include "cli/python_tools.hpp"
 
@@ -106,8 +109,66 @@ int compare_species(const CompareOptions& o, const SpeciesFiles& sp, analysis::R
   return kExitOk;
 }
 
+// The species names of RUN_DIR/run.json ("species": [{"name": ...}, ...] of a run, or
+// ["A", ...] of a transient reference); one unnamed species when it lists none.
+std::vector<std::string> species_names_of(const fs::path& run_json) {
+  std::vector<std::string> names;
+  std::ifstream in(run_json, std::ios::binary);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_discarded() && j.contains("species") && j["species"].is_array()) {
+    for (const auto& s : j["species"]) {
+      if (s.is_object() && s.contains("name") && s["name"].is_string())
+        names.push_back(s["name"].get<std::string>());
+      else if (s.is_string())
+        names.push_back(s.get<std::string>());
+    }
+  }
+  if (names.empty()) names.push_back("");
+  return names;
+}
+
+// Against a transient reference (REF_DIR/outlet.csv and no stations.csv): every species'
+// outlet series, outlet.csv for the first, outlet_<name>.csv for the others.
+int compare_outlets(const CompareOptions& o) {
+  const fs::path run_dir = o.run_dir, ref_dir = o.ref_dir;
+  const std::vector<std::string> names = species_names_of(run_dir / "run.json");
+  std::vector<analysis::OutletSeriesError> rows;
+  for (std::size_t s = 0; s < names.size(); ++s) {
+    const std::string file = s == 0 ? std::string("outlet.csv") : "outlet_" + names[s] + ".csv";
+    try {
+      rows.push_back(analysis::outlet_series_error(names[s], read_outlet_csv(run_dir / file),
+                                                   read_outlet_csv(ref_dir / file)));
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "adrsph compare: " << file << ": " << e.what() << "\n";
+      return kExitBadInput;
+    } catch (const std::exception& e) {  // the reader names the file and the line
+      std::cerr << "adrsph compare: " << e.what() << "\n";
+      return kExitBadInput;
+    }
+  }
+  const std::string run_name =
+      run_dir.filename().empty() ? run_dir.string() : run_dir.filename().string();
+  const std::string md = analysis::outlet_compare_markdown(run_name, ref_dir.string(), rows);
+  std::cout << md;
+  const fs::path md_file = o.out.empty() ? run_dir / "compare_outlet.md" : fs::path(o.out);
+  try {
+    if (md_file.has_parent_path()) fs::create_directories(md_file.parent_path());
+    std::ofstream out(md_file, std::ios::binary);
+    out << md;
+    if (!out) throw std::runtime_error(md_file.string() + ": write failed");
+  } catch (const std::exception& e) {
+    std::cerr << "adrsph compare: " << e.what() << "\n";
+    return kExitIoError;
+  }
+  std::printf("\nwrote %s\n", md_file.c_str());
+  return kExitOk;
+}
+
 int run_compare(const CompareOptions& o) {
   const fs::path run_dir = o.run_dir, ref_dir = o.ref_dir;
+  std::error_code ec;
+  if (fs::exists(ref_dir / "outlet.csv", ec) && !fs::exists(ref_dir / "stations.csv", ec))
+    return compare_outlets(o);
   analysis::RunInfo info = analysis::read_run_info(run_dir / "run.json");
   if (!info.pe) info.pe = analysis::read_run_info(ref_dir / "reference.json").pe;
   const std::vector<SpeciesFiles> more = more_species_of(run_dir);
@@ -139,6 +200,10 @@ Command register_compare(CLI::App& app) {
       "(Markdown, default RUN_DIR/compare.md), FILE with .csv (x_mm,err_y0,err_y+2.5,"
       "err_y-2.5,err_mean) and FILE with .png (tools/plot_errors.py, when a python3 with "
       "matplotlib is found; $ADRSPH_PYTHON overrides).\n"
+      "Against a transient reference (`adrsph reference CASE --transient`: REF_DIR holds "
+      "outlet.csv and no stations.csv), the outlet series of every species instead (outlet.csv, "
+      "outlet_<name>.csv): the excursion from t = 0, its integral, peak, L1 and largest "
+      "distance; FILE defaults to RUN_DIR/compare_outlet.md.\n"
       "Exit codes: 0 ok, 1 I/O error, 2 bad input (missing or malformed CSV).");
   auto o = std::make_shared<CompareOptions>();
   sub->add_option("run_dir", o->run_dir, "Run directory (adrsph run --out)")->required();

@@ -197,12 +197,13 @@ Command register_reference(CLI::App& app) {
       "default grid 800x80) and writes probes_<name>.csv and stations_<name>.csv for every "
       "species after the first; --convergence then also solves nx/2 x ny/2 and prints the "
       "change of each station.\n"
-      "With --transient (one species): dC/dt + u dC/dx = D lap C - R(C) from species.c_init "
+      "With --transient: dC/dt + u dC/dx = D lap C - R(C) from species.c_init "
       "with the inlet "
       "[species.feed] to time.t_end (BDF2), writing the outlet series DIR/outlet.csv every "
       "output.outlet_interval (which must be > 0), DIR/case.toml and DIR/run.json, which "
       "`adrsph rtd DIR` reads like a run; DIR defaults to runs/reference_transient_<case "
-      "name>.\n"
+      "name>. A network is solved in time the same way (Newton on the coupled species in "
+      "each step), every species after the first writing DIR/outlet_<name>.csv.\n"
       "Exit codes: 0 ok, 1 I/O error, 2 bad input (case file, key, value, option), 3 the "
       "solve failed or did not converge.");
   auto o = std::make_shared<ReferenceOptions>();
@@ -226,11 +227,12 @@ Command register_reference(CLI::App& app) {
                 "PASS/FAIL of the 1e-4 criterion; writes DIR/convergence.md");
   sub->add_flag("--transient", o->transient,
                 "Solve in time from species.c_init with the inlet [species.feed] to time.t_end "
-                "(BDF2) and write the outlet series outlet.csv every output.outlet_interval, "
+                "(BDF2) and write the outlet series outlet.csv (outlet_<name>.csv for a "
+                "network's other species) every output.outlet_interval, "
                 "case.toml and run.json: a directory `adrsph rtd` reads. Not with "
                 "--convergence");
   sub->add_option("--dt", o->dt,
-                  "Time step of --transient [s] (default: from the feed's shortest feature and "
+                  "Time step of --transient [s] (default: from the feeds' shortest feature and "
                   "output.outlet_interval, docs/reference.md); rounded down to divide "
                   "output.outlet_interval")
       ->check(CLI::PositiveNumber);

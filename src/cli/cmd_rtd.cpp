@@ -109,14 +109,17 @@ void plot_rtd(const fs::path& csv, const fs::path& json, const fs::path& png,
 }
 
 // The transient reference of --against (docs/rtd.md, "Against the transient reference"):
-// REF_DIR/outlet.csv, and the case it was solved for, REF_DIR/case.toml with REF_DIR/run.json's
-// overrides (the run's case when REF_DIR holds no case.toml). On bad input, nothing and
-// `error` says what, naming the file.
+// REF_DIR/outlet<suffix>.csv, and the case it was solved for, REF_DIR/case.toml with
+// REF_DIR/run.json's overrides (the run's case when REF_DIR holds no case.toml), seen as the
+// run's species `species` (species_view). On bad input, nothing and `error` says what, naming
+// the file.
 std::optional<analysis::RtdAgainst> compare_with_reference(const fs::path& ref_dir,
                                                            const analysis::Rtd& r,
-                                                           const Case& run_case,
+                                                           const Case& run_case, int species,
+                                                           const std::string& suffix,
                                                            std::string& error) {
-  const fs::path outlet_csv = ref_dir / "outlet.csv", case_file = ref_dir / "case.toml";
+  const fs::path outlet_csv = ref_dir / ("outlet" + suffix + ".csv"),
+                 case_file = ref_dir / "case.toml";
   std::error_code ec;
   if (!fs::exists(outlet_csv, ec)) {
     error = outlet_csv.string() +
@@ -124,7 +127,7 @@ std::optional<analysis::RtdAgainst> compare_with_reference(const fs::path& ref_d
             "--transient` (its outlet series)";
     return std::nullopt;
   }
-  Case ref_case = run_case;
+  Case ref_case = run_case;  // the whole case, a network's every species
   if (fs::exists(case_file, ec)) {
     const fs::path run_json = ref_dir / "run.json";
     std::vector<std::string> overrides;
@@ -146,8 +149,16 @@ std::optional<analysis::RtdAgainst> compare_with_reference(const fs::path& ref_d
       return std::nullopt;
     }
   }
+  const std::string name = run_case.species_at(species).name;
+  const std::optional<int> rs = species_index(ref_case, run_case.species_count() > 1 ? name : "");
+  if (!rs || *rs != species || ref_case.species_count() != run_case.species_count()) {
+    error = case_file.string() + ": the reference was solved for species " +
+            species_names(ref_case) + ", the run has " + species_names(run_case);
+    return std::nullopt;
+  }
   try {
-    return analysis::against_reference(r, run_case, read_outlet_csv(outlet_csv), ref_case);
+    return analysis::against_reference(r, species_view(run_case, species),
+                                       read_outlet_csv(outlet_csv), species_view(ref_case, *rs));
   } catch (const analysis::RtdInputError& e) {
     error = outlet_csv.string() + ": " + e.what();
   } catch (const std::exception& e) {  // read_outlet_csv names the file and the line
@@ -230,7 +241,7 @@ int run_rtd(const RtdOptions& o) {
   std::optional<analysis::RtdAgainst> against;
   if (!o.against.empty()) {
     std::string error;
-    against = compare_with_reference(o.against, r, c, error);
+    against = compare_with_reference(o.against, r, run_case, *s, suffix, error);
     if (!against) return bad_input(error);
   }
   const analysis::RtdAgainst* a = against ? &*against : nullptr;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <chrono>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -75,6 +76,15 @@ struct StallRelaxation {
     }
   }
 };
+
+// Seconds of wall time since t0 (the solvers' reports).
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The time stepping of a transient solve: throws std::invalid_argument unless dt, the
+// outlet sample interval and t_end are > 0 and finite (transient_solver.cpp).
+void check_time_stepping(double dt, double sample_interval, double t_end);
 
 // Limited slope from the upwind and downwind differences (TVD region, second order
 // where smooth: both return the true difference for dl == dr).

@@ -39,10 +39,7 @@ namespace adrsph::reference {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using detail::seconds_since;
 
 // Refactorise J at every iteration while the change exceeds this (relative to C_scale).
 constexpr double kNewtonPhase = 0.1;

@@ -62,20 +62,37 @@ class NetworkSystem {
   const Grid& grid() const { return grid_; }
   const Eigen::VectorXd& b() const { return b_; }
   const NetworkKinetics& kinetics() const { return kinetics_; }
-  // F(U) of (N1) with the limiter `limiter` (upwind: corr = 0).
+  // Species s alone: geometry, velocity, D_s, c_in,s (NetworkProblem::species_problem).
+  const Problem& species_problem(int s) const { return problems_[static_cast<std::size_t>(s)]; }
+  // The problem's inlet values c_in,s, one per species.
+  const std::vector<double>& inlet() const { return c_in_; }
+  // F(U) of (N1) with the limiter `limiter` (upwind: corr = 0), at the problem's inlet values.
   Eigen::VectorXd residual(const Eigen::VectorXd& u, Limiter limiter) const;
+  // F(U) of (N1) with inlet values c_in[s] in place of the problem's (the transient mode's
+  // feeds): b_s is linear in c_in,s (the inlet face's advection and diffusion), and the
+  // limiter's inlet ghost takes c_in[s].
+  Eigen::VectorXd residual(const Eigen::VectorXd& u, Limiter limiter,
+                           const std::vector<double>& c_in) const;
   // J(U) of (N2).
   SparseMatrix jacobian(const Eigen::VectorXd& u) const;
+  // The volume of a cell, V = dx dy, and the cell-average velocity of each row.
+  double cell_volume() const { return grid_.dx() * grid_.dy(); }
+  const std::vector<double>& cell_velocity() const { return u_cell_; }
   // C_s of the interleaved U, as one vector over the cells (grid.index order).
   Eigen::VectorXd species_field(const Eigen::VectorXd& u, int s) const;
 
  private:
+  Eigen::VectorXd residual_from(Eigen::VectorXd f, const Eigen::VectorXd& u, Limiter limiter,
+                                const std::vector<double>& c_in) const;
+
   Grid grid_;
   int n_;
   std::vector<Problem> problems_;  // species_problem(s): D_s, c_in,s, k = 0, no reactions
   std::vector<double> u_cell_;
-  SparseMatrix a_;  // blockdiag(A_s) on the interleaved numbering
-  Eigen::VectorXd b_;
+  SparseMatrix a_;          // blockdiag(A_s) on the interleaved numbering
+  Eigen::VectorXd b_unit_;  // b of every species for c_in,s = 1
+  std::vector<double> c_in_;
+  Eigen::VectorXd b_;  // b at c_in_
   NetworkKinetics kinetics_;
 };
 

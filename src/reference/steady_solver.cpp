@@ -14,10 +14,7 @@ namespace adrsph::reference {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using detail::seconds_since;
 
 }  // namespace
 

@@ -27,13 +27,16 @@ TransientProblem transient_problem_from_case(const Case& c) {
 }
 
 double default_transient_dt(const Case& c) {
-  const auto& f = c.species.feed;
   double feature = c.output.outlet_interval > 0.0 ? c.output.outlet_interval : c.time.t_end;
-  if (f.shape == FeedShape::pulse) feature = std::min(feature, f.width);
-  if (f.shape == FeedShape::table)
-    for (std::size_t i = 1; i < f.table.size(); ++i)
-      if (f.table[i][0] > f.table[i - 1][0])
-        feature = std::min(feature, f.table[i][0] - f.table[i - 1][0]);
+  // Every species' feed: a network's reference steps them all together.
+  for (int s = 0; s < c.species_count(); ++s) {
+    const auto& f = c.species_at(s).feed;
+    if (f.shape == FeedShape::pulse) feature = std::min(feature, f.width);
+    if (f.shape == FeedShape::table)
+      for (std::size_t i = 1; i < f.table.size(); ++i)
+        if (f.table[i][0] > f.table[i - 1][0])
+          feature = std::min(feature, f.table[i][0] - f.table[i - 1][0]);
+  }
   return feature / kTransientStepsPerFeature;
 }
 

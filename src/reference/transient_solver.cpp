@@ -40,10 +40,7 @@ namespace {
 
 using detail::SparseMatrix;
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+using detail::seconds_since;
 
 void check(const TransientProblem& p, int nx, int ny, const TransientOptions& opt) {
   if (nx < 2 || ny < 1) throw std::invalid_argument("reference: need nx >= 2 and ny >= 1");
@@ -53,12 +50,7 @@ void check(const TransientProblem& p, int nx, int ny, const TransientOptions& op
   const Problem& s = p.space;
   if (!(s.D >= 0.0) || !(s.k >= 0.0) || !(s.length > 0.0) || !(s.half_width > 0.0))
     throw std::invalid_argument("reference: need D >= 0, k >= 0, L > 0, R > 0");
-  if (!(opt.dt > 0.0) || !std::isfinite(opt.dt))
-    throw std::invalid_argument("reference: the time step must be > 0");
-  if (!(p.sample_interval > 0.0))
-    throw std::invalid_argument("reference: the outlet sample interval must be > 0");
-  if (!(p.t_end > 0.0) || !std::isfinite(p.t_end))
-    throw std::invalid_argument("reference: t_end must be > 0");
+  detail::check_time_stepping(opt.dt, p.sample_interval, p.t_end);
 }
 
 // A + (alpha V / dt) I: the matrix of an implicit step whose storage term is
@@ -106,6 +98,19 @@ OutletRow outlet_of(const Solution& s, const std::vector<double>& u_cell, double
 }
 
 }  // namespace
+
+namespace detail {
+
+void check_time_stepping(double dt, double sample_interval, double t_end) {
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    throw std::invalid_argument("reference: the time step must be > 0");
+  if (!(sample_interval > 0.0) || !std::isfinite(sample_interval))
+    throw std::invalid_argument("reference: the outlet sample interval must be > 0");
+  if (!(t_end > 0.0) || !std::isfinite(t_end))
+    throw std::invalid_argument("reference: t_end must be > 0");
+}
+
+}  // namespace detail
 
 double step_dividing(double dt, double sample_interval) {
   const double n = std::ceil(sample_interval / dt * (1.0 - 1e-12));
