@@ -139,6 +139,7 @@ inline const std::vector<const char*> kRunJsonKeys = {"case",
                                                       "peak_rss_bytes",
                                                       "engine_bytes",
                                                       "restarts",
+                                                      "species_balance",
                                                       "steady_criterion",
                                                       "results_version"};
 

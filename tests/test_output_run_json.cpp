@@ -29,6 +29,8 @@ RunResult sample_result() {
   r.average_window = 0.5;
   r.probe_interpolation = "Shepard";
   r.engine_bytes = {1000, 2000, 300};
+  r.balance_flow_rate = 1333.0;
+  r.species_balance = {{"C", 0.05, 0.049, 0.0, 0.001}};
   return r;
 }
 
@@ -58,6 +60,10 @@ TEST(RunJson, EveryKey) {
   EXPECT_EQ(j["fluid_particles"], 4000);
   EXPECT_EQ(j["threads"], 2);
   EXPECT_EQ(j["overrides"], nlohmann::json::array({"species.D=1"}));
+  EXPECT_DOUBLE_EQ(j["species_balance"]["flow_rate"].get<double>(), 1333.0);
+  EXPECT_DOUBLE_EQ(j["species_balance"]["C"]["inflow"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(j["species_balance"]["C"]["outflow"].get<double>(), 0.049);
+  EXPECT_DOUBLE_EQ(j["species_balance"]["C"]["held"].get<double>(), 0.001);
   EXPECT_EQ(j["wall_images"], false);
   EXPECT_DOUBLE_EQ(j["load_average"]["start"].get<double>(), 0.5);
   EXPECT_DOUBLE_EQ(j["load_average"]["end"].get<double>(), 0.75);

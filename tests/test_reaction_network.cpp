@@ -330,6 +330,20 @@ TEST(ReactionNetwork, RestartIsExact) {
       EXPECT_EQ(a.more_outlet[s][i].c_flow, b.more_outlet[s][i].c_flow);
     }
   }
+  // run.json's species_balance: every species' ledger, carried through the checkpoint.
+  ASSERT_EQ(a.species_balance.size(), 3u);
+  ASSERT_EQ(b.species_balance.size(), 3u);
+  for (std::size_t s = 0; s < 3; ++s) {
+    EXPECT_EQ(a.species_balance[s].name, b.species_balance[s].name);
+    EXPECT_EQ(a.species_balance[s].inflow, b.species_balance[s].inflow) << s;
+    EXPECT_EQ(a.species_balance[s].outflow, b.species_balance[s].outflow) << s;
+    EXPECT_EQ(a.species_balance[s].reacted, b.species_balance[s].reacted) << s;
+    EXPECT_EQ(a.species_balance[s].held, b.species_balance[s].held) << s;
+  }
+  EXPECT_GT(a.species_balance[0].inflow, 0.0);
+  EXPECT_GT(a.species_balance[0].reacted, 0.0);  // the reactant is consumed
+  EXPECT_LT(a.species_balance[2].reacted, 0.0);  // the product made
+  EXPECT_GT(a.balance_flow_rate, 0.0);
   // At the start the outlet holds the initial fluid: B at 1.5, P at 0.
   EXPECT_NEAR(a.more_outlet[0].front().c_flow, 1.5, 1e-6);
   EXPECT_NEAR(a.more_outlet[1].front().c_flow, 0.0, 1e-6);

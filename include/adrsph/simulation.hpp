@@ -151,6 +151,17 @@ struct RunResult {
     std::size_t particles = 0, neighbour_lists = 0, diffusion_weights = 0;
   } engine_bytes;
   int restarts = 0;  // times the run was continued from a checkpoint
+  // Each species' ledger at the end (SphSolver::species_ledger: what particles carried
+  // across x = 0 and x = L, what the reactions consumed) and what the fluid holds
+  // (species_inventory), all divided by the nominal flow rate Q = 2R (2/3) u_max: amounts in
+  // mol/m^3 s, comparable with a feed's int C_in dt. Counted since the start of the run's
+  // WCSPH (or prescribed) solver: a warm start's prescribed run is not in it.
+  struct SpeciesBalance {
+    std::string name;
+    double inflow = 0.0, outflow = 0.0, reacted = 0.0, held = 0.0;
+  };
+  std::vector<SpeciesBalance> species_balance;
+  double balance_flow_rate = 0.0;  // Q [mm^2/s]
   struct {
     double tol = 0.0, window = 0.0, t_min = 0.0;  // the steady test used (steady_state.hpp)
   } steady_criterion;

@@ -140,6 +140,14 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
   result.peak_rss_bytes = std::max(result.peak_rss_bytes, peak_rss_bytes());
   result.engine_bytes = {solver.particle_bytes(), solver.list_bytes(),
                          solver.diffusion_weight_bytes()};
+  result.balance_flow_rate = 2.0 * c.geometry.half_width * (2.0 / 3.0) * c.u_max();
+  result.species_balance.clear();
+  for (int e = 0; e < c.species_count(); ++e) {
+    const SpeciesLedger& l = solver.species_ledger(e);
+    const double q = result.balance_flow_rate;
+    result.species_balance.push_back({c.species_at(e).name, l.inflow / q, l.outflow / q,
+                                      l.reaction / q, solver.species_inventory(e) / q});
+  }
   if (end == RunLoop::End::interrupted) {
     result.status = "interrupted";
     result.message =

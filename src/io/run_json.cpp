@@ -115,6 +115,16 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
     }
     j["species_stations"] = more;
   }
+  // Each species' ledger over the nominal flow rate (simulation.hpp, RunResult).
+  Json balance = Json::object();
+  balance["unit"] = "amount per nominal flow rate, mol/m^3 s";
+  balance["flow_rate"] = number(r.balance_flow_rate);
+  for (const RunResult::SpeciesBalance& b : r.species_balance)
+    balance[b.name.empty() ? "species" : b.name] = Json{{"inflow", number(b.inflow)},
+                                                        {"outflow", number(b.outflow)},
+                                                        {"reacted", number(b.reacted)},
+                                                        {"held", number(b.held)}};
+  j["species_balance"] = balance;
   j["field_frames"] = ctx.field_frames;
   j["overrides"] = ctx.overrides;
   // Wall times mean little without the machine's load: a busy machine slows a run.
