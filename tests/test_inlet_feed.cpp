@@ -120,8 +120,9 @@ TEST(InletFeed, InflowBufferCarriesThePulse) {
     held_mid_step += inlet_concentration(c.species, t0 + 0.5 * dt) * dt;
     (mean > 1.0 - 1e-9 ? inside : mean < 1e-9 ? outside : partial) += 1;
   }
-  std::printf("pulse amount 0.0301 mol/m^3 s: buffer holds %.9f (mid-step values: %.9f), dt = %.3g\n",
-              held, held_mid_step, dt);
+  std::printf(
+      "pulse amount 0.0301 mol/m^3 s: buffer holds %.9f (mid-step values: %.9f), dt = %.3g\n", held,
+      held_mid_step, dt);
   EXPECT_GT(inside, 10);
   EXPECT_GT(outside, 10);
   EXPECT_GE(partial, 1) << "a pulse edge inside a step, where the mean is a fraction";
