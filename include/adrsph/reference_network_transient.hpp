@@ -5,7 +5,8 @@
 // dC_s/dn = 0 at the walls and the steady solver's outlet at x = L, on the grid and with the
 // cell balances (N1) of the steady network solve (reference_network.hpp), BDF2 in time with
 // the single-species mode's feed windows and start (reference_transient.hpp). Each step's
-// coupled nonlinear system is solved by Newton's method with the limiter lagged (deferred
+// coupled nonlinear system is solved by a chord iteration (the step matrix of an earlier
+// iterate, species by species) with the limiter lagged (deferred
 // correction), as the steady network solve does. Its outlet series are the SPH run's
 // contract: outlet.csv for the first species, outlet_<name>.csv for the others.
 #pragma once
@@ -47,7 +48,7 @@ struct NetworkTransientSolution {
   // `reacted` is the net consumption, V sum_r nu_rs R_r summed over the cells (a product's
   // is negative).
   std::vector<TransientBalance> balance;
-  TransientReport report;  // `corrections`: Newton iterations (linear solves), all steps
+  TransientReport report;  // `corrections`: iterations (linear solves), all steps
   int factorisations = 0;  // of the step matrix (whole or its species blocks), all steps
   long coupled_steps = 0;  // steps that fell back on the coupled matrix (network_transient.cpp)
 };

@@ -56,7 +56,7 @@ void print_network_summary(const ref::NetworkTransientSolution& s, const Case& c
   std::printf("transient network reference %dx%d, %d species  %s\n", s.final.grid.nx,
               s.final.grid.ny, c.species_count(), r.solver.c_str());
   std::printf(
-      "  dt = %.4g s, %ld steps to t = %.4g s, %s; %.2f Newton iterations per step (max "
+      "  dt = %.4g s, %ld steps to t = %.4g s, %s; %.2f iterations per step (max "
       "%d)%s\n",
       r.dt, r.steps, s.t_reached, r.started_at_rest ? "BDF2 from rest" : "implicit-Euler start",
       static_cast<double>(r.corrections) / static_cast<double>(std::max(1L, r.steps)),

@@ -2,12 +2,14 @@
 // (N1) of the steady network (network_system.hpp) gains the storage term V dC_s/dt; BDF2 at a
 // constant step dt, the feeds entering through the inlet values f_s of each step:
 //   G(U) = V (3 U - 4 U^n + U^{n-1}) / (2 dt) + F(U; f^{n+1}) = 0                    (NT1)
-// (implicit Euler, V (U - U^n) / dt, for a first step that does not start at rest). Newton's
-// method on (NT1) with the Jacobian of the upwind transport and the exact reaction slopes,
-//   (3V / (2 dt) I + J(U*)) dU = -G(U^m),   U^{m+1} = U^m + dU                        (NT2)
+// (implicit Euler, V (U - U^n) / dt, for a first step that does not start at rest). A
+// Newton-type (chord) iteration on (NT1) with the Jacobian of the upwind transport and the
+// exact reaction slopes taken at an earlier iterate U*,
+//   (3V / (2 dt) I + J(U*)) dU = -G(U^m),   U^{m+1} = U^m + w dU                      (NT2)
 // from U^0 = 2 U^n - U^{n-1}, the limiter lagged inside the same loop as in the steady solve
-// (network_solver.cpp), until max |dU| < tolerance C_scale; then U^{n+1} solves (NT1) with the
-// full limited scheme and the reactions.
+// (network_solver.cpp), until max |dU| < tolerance C_scale (w = 1, halved when the change
+// stalls, as in the steady solve); then U^{n+1} solves (NT1) with the full limited scheme and
+// the reactions.
 //
 // Factorisation. The storage term dominates the step matrix at the steps the outlet series
 // needs (3V / (2 dt) against the reaction slopes V dR/dC), so a matrix factorised at an
@@ -257,7 +259,6 @@ NetworkTransientSolution solve_network_transient(const NetworkTransientProblem& 
   }
 
   Eigen::VectorXd before = now, u(unknowns);
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(unknowns);
   StepSolver step;
   double factor_seconds = 0.0;
   for (long k = 1; k <= steps; ++k) {
@@ -340,7 +341,7 @@ NetworkTransientSolution solve_network_transient(const NetworkTransientProblem& 
   rep.step_seconds = seconds_since(t0) - factor_seconds;
   rep.factor_seconds = factor_seconds;
   rep.solver = std::string(to_string(opt.solver)) + " + " + to_string(opt.limiter) +
-               ", BDF2, Newton per step (" + std::to_string(out.factorisations) +
+               ", BDF2, chord iteration per step (" + std::to_string(out.factorisations) +
                (out.factorisations == 1 ? " factorisation)" : " factorisations)");
 
   NetworkSolution& fin = out.final;
