@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -19,11 +20,45 @@
 
 namespace adrsph {
 
+// One particle array of a snapshot, by name. A solver's snapshot views the store's array
+// (SphSolver::snapshot: valid until the solver steps on; the checkpoint is written from it
+// without a copy, which would add a whole state's worth to a run's peak memory); an array
+// read from a file, or any copy of a snapshot, owns its values.
+template <class T>
+class NamedArray {
+ public:
+  NamedArray(std::string array_name, std::span<const T> view)
+      : name(std::move(array_name)), values_(view) {}
+  NamedArray(std::string array_name, std::vector<T> data)
+      : name(std::move(array_name)), owned_(std::move(data)), values_(owned_) {}
+  NamedArray(const NamedArray& o)
+      : name(o.name), owned_(o.values_.begin(), o.values_.end()), values_(owned_) {}
+  NamedArray& operator=(const NamedArray& o) {
+    if (this != &o) {
+      name = o.name;
+      owned_.assign(o.values_.begin(), o.values_.end());
+      values_ = owned_;
+    }
+    return *this;
+  }
+  // A moved std::vector keeps its buffer, so the view of an owning array stays valid.
+  NamedArray(NamedArray&&) noexcept = default;
+  NamedArray& operator=(NamedArray&&) noexcept = default;
+  ~NamedArray() = default;
+
+  std::span<const T> values() const { return values_; }
+  std::string name;
+
+ private:
+  std::vector<T> owned_;
+  std::span<const T> values_;
+};
+
 // Particle arrays by name, in store order: the particle store's `state` fields (its field
 // list, src/particles/particle_store.hpp: x, y, vx, vy, rho, c, kind, p, vol), so a new state
 // field is checkpointed without an edit here or in the file format.
 template <class T>
-using NamedArrays = std::vector<std::pair<std::string, std::vector<T>>>;
+using NamedArrays = std::vector<NamedArray<T>>;
 struct ParticleArrays {
   NamedArrays<double> f64;
   NamedArrays<float> f32;

@@ -165,11 +165,17 @@ RunSetup prepare(const RunOptions& o) {
 class CheckpointingObserver : public CliObserver {
  public:
   CheckpointingObserver(fs::path fields, ProgressMode progress, bool append, fs::path checkpoint,
-                        CheckpointFile base, double minutes)
+                        const CheckpointFile& base, double minutes)
       : CliObserver(std::move(fields), progress, append),
         checkpoint_(std::move(checkpoint)),
-        base_(std::move(base)),
-        interval_s_(60.0 * minutes) {}
+        interval_s_(60.0 * minutes) {
+    // What the checkpoint says about the run; not the state it was continued from, which
+    // would be a second copy of the particles held to the end of the run.
+    base_.case_file = base.case_file;
+    base_.case_text = base.case_text;
+    base_.overrides = base.overrides;
+    base_.threads = base.threads;
+  }
 
   CheckpointRequest checkpoint_request(double wall_s) override {
     if (g_stop_signal != 0) return CheckpointRequest::write_and_stop;
@@ -180,8 +186,7 @@ class CheckpointingObserver : public CliObserver {
     return CheckpointRequest::none;
   }
   void on_checkpoint(const RunCheckpoint& cp) override {
-    base_.state = cp;
-    write_checkpoint(checkpoint_, base_);
+    write_checkpoint(checkpoint_, base_, cp);  // cp views the solver's particles
     ++written_;
     if (g_stop_signal == 0) log_line("checkpoint at t = " + std::to_string(cp.solver.t) + " s");
   }

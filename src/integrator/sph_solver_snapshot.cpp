@@ -1,6 +1,7 @@
 // Checkpoint/restart of the solver (adrsph/checkpoint.hpp): the state a snapshot keeps and
 // how restore() rebuilds the rest from it.
 #include <algorithm>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -12,13 +13,12 @@ namespace adrsph {
 SolverSnapshot SphSolver::snapshot() const {
   const std::size_t n = store_.size();
   SolverSnapshot s;
-  // The state fields of the store's field list, by name (checkpoint.hpp).
+  // The state fields of the store's field list, by name, as views (checkpoint.hpp).
   ParticleStore::for_each_field(
       store_, [&](const auto& a, ParticleStore::Role role, const char* name) {
         if (role != ParticleStore::Role::state) return;
         using T = typename std::decay_t<decltype(a)>::value_type;
-        s.particles.of<T>().emplace_back(
-            name, std::vector<T>(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(n)));
+        s.particles.of<T>().emplace_back(name, std::span<const T>(a.data(), n));
       });
   s.inflow_row_tail = scene_.inflow_row_tails();
   s.t = t_;
@@ -46,17 +46,22 @@ void SphSolver::restore(const SolverSnapshot& s) {
   ParticleStore::for_each_field(store_, [&](auto& a, ParticleStore::Role role, const char* name) {
     if (role != ParticleStore::Role::state) return;
     using T = typename std::decay_t<decltype(a)>::value_type;
-    const std::vector<T>* v = nullptr;
-    for (const auto& [key, values] : s.particles.of<T>())
-      if (key == name) v = &values;
-    if (!v) throw std::invalid_argument(std::string("checkpoint has no particle array ") + name);
+    std::span<const T> v;
+    bool found = false;
+    for (const NamedArray<T>& named : s.particles.of<T>())
+      if (named.name == name) {
+        v = named.values();
+        found = true;
+      }
+    if (!found)
+      throw std::invalid_argument(std::string("checkpoint has no particle array ") + name);
     if (first) {
-      n = v->size();
+      n = v.size();
       first = false;
       store_.resize(n);
     }
-    if (v->size() != n) throw std::invalid_argument("checkpoint particle arrays differ in length");
-    std::copy(v->begin(), v->end(), a.begin());
+    if (v.size() != n) throw std::invalid_argument("checkpoint particle arrays differ in length");
+    std::copy(v.begin(), v.end(), a.begin());
   });
   scene_.set_inflow_row_tails(s.inflow_row_tail);
   for (std::size_t i = 0; i < n; ++i) {

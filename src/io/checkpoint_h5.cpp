@@ -119,9 +119,12 @@ void write_solver(hid_t root, const SolverSnapshot& s, const std::string& file) 
   const auto g = create_group(root, "solver", file);
   const hid_t id = g.get();
   // The particle arrays under their store names (/solver/x, /solver/kind, ...).
-  for (const auto& [name, v] : s.particles.f64) put(id, name.c_str(), v, file);
-  for (const auto& [name, v] : s.particles.f32) put(id, name.c_str(), v, file);
-  for (const auto& [name, v] : s.particles.u8) put(id, name.c_str(), v, file);
+  auto put_arrays = [&](const auto& arrays) {
+    for (const auto& a : arrays) h5::write_dataset(id, a.name, a.values(), file, true);
+  };
+  put_arrays(s.particles.f64);
+  put_arrays(s.particles.f32);
+  put_arrays(s.particles.u8);
   for (const auto& [name, field] : kSolverDoubles) put(id, name, s.*field, file);
   for (const auto& [name, field] : kSolverScalars) write_attribute(id, name, s.*field, file);
   for (const auto& [name, field] : kSolverCounters) put_long(id, name, s.*field, file);
@@ -249,6 +252,11 @@ void read_run(hid_t root, RunCheckpoint& r, const std::string& file) {
 }  // namespace
 
 void write_checkpoint(const std::filesystem::path& path, const CheckpointFile& cp) {
+  write_checkpoint(path, cp, cp.state);
+}
+
+void write_checkpoint(const std::filesystem::path& path, const CheckpointFile& cp,
+                      const RunCheckpoint& state) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   const std::string file = tmp.string();
@@ -270,10 +278,13 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointFile& c
       put_text(g.get(), "overrides", lines, file);
       put_long(g.get(), "threads", cp.threads, file);
     }
-    write_solver(f.get(), cp.state.solver, file);
-    write_run(f.get(), cp.state, file);
+    write_solver(f.get(), state.solver, file);
+    write_run(f.get(), state, file);
     h5::check(H5Fflush(f.get(), H5F_SCOPE_GLOBAL), file, "flush");
   }
+  // HDF5's free lists emptied, as after a field frame (fields_h5.cpp): what the write used is
+  // not held until the next one.
+  H5garbage_collect();
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec)

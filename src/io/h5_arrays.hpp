@@ -54,8 +54,15 @@ void write_dataset(hid_t group, const std::string& name, std::span<const T> data
     check(H5Pset_chunk(props.get(), 1, &chunk), file, "chunk dataset " + name);
     check(H5Pset_fletcher32(props.get()), file, "checksum dataset " + name);
   }
+  // No chunk cache: each chunk goes through the filter once, straight to the file, instead
+  // of being held (up to 1 MB per dataset) until the dataset is closed.
+  const auto access =
+      check(H5Pcreate(H5P_DATASET_ACCESS), H5Pclose, file, "create dataset access properties");
+  if (checksum && n > 0)
+    check(H5Pset_chunk_cache(access.get(), 0, 0, H5D_CHUNK_CACHE_W0_DEFAULT), file,
+          "chunk cache of " + name);
   const auto set = check(H5Dcreate2(group, name.c_str(), file_type<T>(), space.get(), H5P_DEFAULT,
-                                    props.get(), H5P_DEFAULT),
+                                    props.get(), access.get()),
                          H5Dclose, file, "create dataset " + name);
   if (n > 0)
     check(H5Dwrite(set.get(), mem_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), file,

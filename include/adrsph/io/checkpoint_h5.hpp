@@ -28,6 +28,10 @@ struct CheckpointFile {
 // Writes `file` whole or not at all (a temporary file renamed over it). Throws
 // std::runtime_error naming the file.
 void write_checkpoint(const std::filesystem::path& file, const CheckpointFile& cp);
+// The same with the state given apart (about.state is not read): a running solver's
+// checkpoint is written from its snapshot, which views the particle store, without a copy.
+void write_checkpoint(const std::filesystem::path& file, const CheckpointFile& about,
+                      const RunCheckpoint& state);
 // Throws std::runtime_error naming the file and what is missing or malformed.
 CheckpointFile read_checkpoint(const std::filesystem::path& file);
 
