@@ -140,6 +140,28 @@ INSTANTIATE_TEST_SUITE_P(Schemes, RestartIsExact,
                                   to_string(info.param.second);
                          });
 
+// A snapshot's array views the store (no copy on the way to the file); a copy owns its values,
+// so it keeps them when the store moves on; a moved owning array keeps its values.
+TEST(Checkpoint, NamedArrayViewsAndCopiesOwn) {
+  std::vector<double> store{1.0, 2.0, 3.0};
+  const NamedArray<double> view("x", std::span<const double>(store));
+  EXPECT_EQ(view.values().data(), store.data());
+  NamedArray<double> copy = view;
+  EXPECT_NE(copy.values().data(), store.data());
+  store[1] = 20.0;
+  EXPECT_EQ(view.values()[1], 20.0);
+  EXPECT_EQ(copy.values()[1], 2.0);
+  NamedArray<double> assigned("y", std::vector<double>{});
+  assigned = view;
+  EXPECT_EQ(assigned.name, "x");
+  ASSERT_EQ(assigned.values().size(), 3u);
+  EXPECT_EQ(assigned.values()[1], 20.0);
+  const NamedArray<double> moved = std::move(copy);
+  ASSERT_EQ(moved.values().size(), 3u);
+  EXPECT_EQ(moved.values()[0], 1.0);
+  EXPECT_EQ(moved.values()[1], 2.0);
+}
+
 TEST(Checkpoint, PeriodicCheckpointsChangeNothing) {
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
