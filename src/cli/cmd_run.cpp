@@ -168,13 +168,11 @@ class CheckpointingObserver : public CliObserver {
                         const CheckpointFile& base, double minutes)
       : CliObserver(std::move(fields), progress, append),
         checkpoint_(std::move(checkpoint)),
+        base_(base),
         interval_s_(60.0 * minutes) {
-    // What the checkpoint says about the run; not the state it was continued from, which
+    // What the checkpoint says about the run, without the state it was continued from: that
     // would be a second copy of the particles held to the end of the run.
-    base_.case_file = base.case_file;
-    base_.case_text = base.case_text;
-    base_.overrides = base.overrides;
-    base_.threads = base.threads;
+    base_.state = RunCheckpoint{};
   }
 
   CheckpointRequest checkpoint_request(double wall_s) override {

@@ -46,15 +46,12 @@ void SphSolver::restore(const SolverSnapshot& s) {
   ParticleStore::for_each_field(store_, [&](auto& a, ParticleStore::Role role, const char* name) {
     if (role != ParticleStore::Role::state) return;
     using T = typename std::decay_t<decltype(a)>::value_type;
-    std::span<const T> v;
-    bool found = false;
-    for (const NamedArray<T>& named : s.particles.of<T>())
-      if (named.name == name) {
-        v = named.values();
-        found = true;
-      }
-    if (!found)
+    const NamedArray<T>* named = nullptr;
+    for (const NamedArray<T>& candidate : s.particles.of<T>())
+      if (candidate.name == name) named = &candidate;
+    if (!named)
       throw std::invalid_argument(std::string("checkpoint has no particle array ") + name);
+    const std::span<const T> v = named->values();
     if (first) {
       n = v.size();
       first = false;

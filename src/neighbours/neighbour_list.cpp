@@ -26,9 +26,8 @@ inline std::uint32_t in_row(std::size_t i, std::uint32_t j, double d2, double rc
 
 // Fill row i of the CSR with entry(i, j), j its neighbours in the order the cells give them,
 // then pad it to its end with `pad`. Every candidate is stored and the row end advances by
-// its in/out test: in a run the test follows no pattern, and a branch on it mispredicted
-// about once per neighbour (the build ran 2.2x slower on a run's particles than on the
-// lattice, BM_NeighbourListDisordered). The row is assembled in a buffer of its thread and
+// in_row, with no branch on it (a branch ran the build 2.2x slower on a run's particles than
+// on the lattice, BM_NeighbourListDisordered). The row is assembled in a buffer of its thread and
 // copied (a store past the row's end would land in the next row, which may be another
 // thread's). (A function, not a generic lambda: clang does not accept an OpenMP loop in a
 // generic lambda that reads the enclosing function's locals.)
