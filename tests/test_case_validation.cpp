@@ -58,6 +58,8 @@ INSTANTIATE_TEST_SUITE_P(
         Rule{{"time.dt_factor=-1"}, "time.dt_factor", "[0, 100]"},
         Rule{{"time.dt=1e-5", "time.dt_factor=2"}, "time.dt_factor", "time.dt is set"},
         Rule{{"fluid.rho0=0"}, "fluid.rho0", "> 0"}, Rule{{"fluid.nu=0"}, "fluid.nu", "> 0"},
+        Rule{{"fluid.driving=body_force", "flow=prescribed"}, "fluid.driving", "\"pressure\""},
+        Rule{{"fluid.driving=gravity"}, "fluid.driving", "\"body_force\""},
         Rule{{"fluid.u_bulk=-1"}, "fluid.u_bulk", "> 0"},
         Rule{{"fluid.c0_factor=0"}, "fluid.c0_factor", "> 0"},
         Rule{{"fluid.gamma=0.5"}, "fluid.gamma", "[1, 20]"},

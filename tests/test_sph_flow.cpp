@@ -51,6 +51,52 @@ TEST(Flow, ConventionalSchemeKeepsPoiseuilleProfile) {
   EXPECT_LT(err, 0.05);
 }
 
+// d(rho/rho0)/dx of the fluid [1/mm]: least-squares slope over x in [x0, x1].
+double density_slope(const SphSolver& s, const Case& c, double x0, double x1) {
+  const auto& p = s.particles();
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.kind[i] != kFluidByte || p.x[i] < x0 || p.x[i] > x1) continue;
+    const double r = p.rho[i] / c.fluid.rho0 - 1.0;
+    n += 1;
+    sx += p.x[i];
+    sy += r;
+    sxx += p.x[i] * p.x[i];
+    sxy += p.x[i] * r;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// fluid.driving: driven by the pressure difference (the paper's set-up), the density falls
+// along the channel by the Poiseuille pressure gradient over c0^2, -2 nu u_max / (R^2 c0^2)
+// per mm (docs/compressibility.md); driven by the body force that equals that gradient, the
+// same flow keeps a uniform density and the same profile.
+TEST(Flow, BodyForceDrivingLeavesTheDensityUniform) {
+  for (Scheme scheme : {Scheme::modern, Scheme::conventional}) {
+    Case c = testing::short_channel(scheme, Flow::wcsph, 20.0);
+    const double r = c.geometry.half_width;
+    const double expected = -2.0 * c.fluid.nu * c.u_max() / (r * r * c.c0() * c.c0());
+    double slope[2], err[2];
+    for (Driving d : {Driving::pressure, Driving::body_force}) {
+      c.fluid.driving = d;
+      SphSolver solver(c);
+      const double dt = solver.dt_limits().chosen;
+      while (solver.time() < 0.2) ASSERT_TRUE(solver.step(dt)) << solver.failure();
+      const int k = d == Driving::body_force;
+      slope[k] = density_slope(solver, c, 3.0, 17.0);
+      err[k] = poiseuille_l2_error(solver, c);
+    }
+    std::printf(
+        "%s: d(rho/rho0)/dx %.3e /mm driven by pressure, %.3e by the body force "
+        "(Poiseuille %.3e); L2 velocity error %.3f%% / %.3f%%\n",
+        scheme == Scheme::modern ? "modern" : "conventional", slope[0], slope[1], expected,
+        100 * err[0], 100 * err[1]);
+    EXPECT_NEAR(slope[0], expected, 0.25 * std::fabs(expected));
+    EXPECT_LT(std::fabs(slope[1]), 0.1 * std::fabs(expected));
+    EXPECT_LT(err[1], 0.02);
+  }
+}
+
 // The conventional force pass also sums the kernel at the positions the integrator gives the
 // particles next, and the next evaluation takes its density from there instead of a pass of
 // its own (pass_context.hpp). Both ways must give the same run to round-off: through list

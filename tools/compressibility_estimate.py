@@ -120,6 +120,9 @@ def estimate(keys, reactions):
     c0 = number("fluid.c0_factor") * u_max
     length, half = number("geometry.length"), number("geometry.half_width")
     g = density_drop(number("fluid.nu"), u_max, length, half, c0)
+    # fluid.driving = "body_force" carries the pressure drop by a body force: no density drop.
+    if merged.get("fluid.driving", "pressure") == "body_force":
+        g = 0.0
     rate = rate_law(keys, reactions)
     xs = [x for x in STATIONS if x <= length]
     u_mean = 2.0 * u_max / 3.0
@@ -174,6 +177,9 @@ def self_test():
         c = (2.0 * u - 1.0 * x) / (u * (1.0 + g * x / 100.0))
         check(f"zero order at x = {x:g}: {inc[x] * (1 + z[x]):.8f} against {c:.8f}",
               abs(inc[x] * (1 + z[x]) - c) < 1e-7)
+    rel, _, g = estimate({"species.k": 1.462, "fluid.driving": "body_force"}, [])
+    check(f"no density drop with fluid.driving = body_force (g = {g:g})",
+          g == 0.0 and all(v == 0.0 for v in rel.values()))
     print("self-test: " + ("passed" if failures == 0 else f"{failures} failed"))
     return 1 if failures else 0
 

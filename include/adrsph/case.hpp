@@ -14,6 +14,11 @@ namespace adrsph {
 
 enum class Scheme { modern, conventional };
 enum class Flow { wcsph, prescribed };
+// What drives a WCSPH flow through the channel (`fluid.driving`): the pressure difference
+// between inlet and outlet, as in the paper, or a uniform body force equal to the fully
+// developed flow's mean pressure gradient, which leaves the pressure (and so the density)
+// uniform along the channel (docs/compressibility.md, "Driving the flow by a body force").
+enum class Driving { pressure, body_force };
 // The inlet concentration in time (`species.feed.shape`): c_in throughout, a step from `base`
 // to c_in at t0, a pulse of c_in over [t0, t0 + width) on `base`, or a table of (t, C) points.
 enum class FeedShape { constant, step, pulse, table };
@@ -89,13 +94,14 @@ struct Case {
   } particles;
 
   struct Fluid {
-    double rho0 = 1.2;                   // `fluid.rho0` [kg/m^3]
-    double nu = 15.0;                    // `fluid.nu` [mm^2/s]
-    double u_bulk = 100.0;               // `fluid.u_bulk` [mm/s]; u_max = 2 u_bulk
-                                         // (docs/benchmark.md, section 1)
-    double c0_factor = 10.0;             // `fluid.c0_factor`, c0 = c0_factor * u_max
-    double gamma = 7.0;                  // `fluid.gamma`, Tait exponent
-    double background_pressure = 0.025;  // `fluid.background_pressure`, p_b / (rho0 c0^2)
+    double rho0 = 1.2;                    // `fluid.rho0` [kg/m^3]
+    double nu = 15.0;                     // `fluid.nu` [mm^2/s]
+    double u_bulk = 100.0;                // `fluid.u_bulk` [mm/s]; u_max = 2 u_bulk
+                                          // (docs/benchmark.md, section 1)
+    double c0_factor = 10.0;              // `fluid.c0_factor`, c0 = c0_factor * u_max
+    double gamma = 7.0;                   // `fluid.gamma`, Tait exponent
+    double background_pressure = 0.025;   // `fluid.background_pressure`, p_b / (rho0 c0^2)
+    Driving driving = Driving::pressure;  // `fluid.driving` = "pressure" | "body_force"
   } fluid;
 
   // The first species: `[species]`, or the first of several `[[species]]` tables (then its
@@ -169,6 +175,13 @@ struct Case {
 
   double u_max() const { return 2.0 * fluid.u_bulk; }
   double c0() const { return fluid.c0_factor * u_max(); }
+  // The body force per mass [mm/s^2] along x with fluid.driving = "body_force": the pressure
+  // gradient -dp/dx = 2 mu u_max / R^2 of planar Poiseuille flow, over rho0; 0 otherwise.
+  double body_force_x() const {
+    if (flow != Flow::wcsph || fluid.driving != Driving::body_force) return 0.0;
+    const double r = geometry.half_width;
+    return 2.0 * fluid.nu * u_max() / (r * r);
+  }
   double h() const { return particles.dx; }
   double peclet() const { return fluid.u_bulk * geometry.length / species.D; }
 };

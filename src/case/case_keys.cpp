@@ -297,6 +297,8 @@ std::vector<KeyDef> make_keys() {
       "fluid.gamma", [](Case & c) -> auto& { return c.fluid.gamma; }));
   k.push_back(number(
       "fluid.background_pressure", [](Case & c) -> auto& { return c.fluid.background_pressure; }));
+  k.push_back(choice<Driving>("fluid.driving", {"pressure", "body_force"},
+                              [](Case& c) -> Driving& { return c.fluid.driving; }));
 
   k.push_back(
       {"species", "a table ([species]) or an array of tables ([[species]])",

@@ -132,6 +132,9 @@ void check_fluid_species(Checker& k, const Case& c) {
   k.require(!c.species.ale || c.scheme == Scheme::modern, "species.ale",
             "expected false with scheme = \"conventional\" (the ALE term du . grad C exists only "
             "in the modern scheme, whose particles move with u + du)");
+  k.require(c.fluid.driving == Driving::pressure || c.flow == Flow::wcsph, "fluid.driving",
+            "expected \"pressure\" with flow = \"prescribed\" (a prescribed flow solves no "
+            "momentum equation for a body force to act on)");
   k.non_negative("modern.delta", c.modern.delta);
   k.range("modern.shift_eps", c.modern.shift_eps, 0.0, false, 1.0, false);
   k.range("modern.shift_max", c.modern.shift_max, 0.0, false, 1.0, false);

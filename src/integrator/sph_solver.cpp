@@ -28,6 +28,7 @@ SphSolver::SphSolver(const Case& c, std::span<const double> initial_c)
   phys_.four_nu = 4.0 * c.fluid.nu;
   phys_.delta_h_c0_2 = 2.0 * c.modern.delta * h * c.c0();
   phys_.diffusivity = c.species.D;
+  phys_.body_force_x = c.body_force_x();
   phys_.max_diffusivity = c.species.D;
   phys_.wall_image_y = c.particles.wall_images ? c.geometry.half_width : 0.0;
   for (int e = 0; e + 1 < c.species_count(); ++e) {

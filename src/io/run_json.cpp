@@ -132,6 +132,7 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
                            {"end", ctx.load_end >= 0 ? Json(ctx.load_end) : Json(nullptr)}};
   j["ale"] = c.species.ale;
   j["wall_images"] = c.particles.wall_images;
+  j["driving"] = c.fluid.driving == Driving::body_force ? "body_force" : "pressure";
   j["peak_rss_bytes"] = number(r.peak_rss_bytes);
   j["engine_bytes"] = {{"particles", r.engine_bytes.particles},
                        {"neighbour_lists", r.engine_bytes.neighbour_lists},

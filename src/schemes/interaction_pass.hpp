@@ -54,6 +54,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
   const real eta2 = static_cast<real>(ph.eta2), mass = static_cast<real>(s.mass);
   const real four_nu = static_cast<real>(ph.four_nu), dh = static_cast<real>(ph.delta_h_c0_2);
   const real diffusivity = static_cast<real>(ph.diffusivity);
+  [[maybe_unused]] const real body_force = static_cast<real>(ph.body_force_x);
   // The network's other species (unused slots read c with D = 0, and are not stored).
   const int more = s.needs().more_species;
   auto more_c = [&](int e) { return e < more ? s.c_more[e].data() : c; };
@@ -147,7 +148,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
       }
     }
     if constexpr (Scheme::momentum) {
-      s.ax[i] = ax;
+      s.ax[i] = ax + body_force;  // eq. (5), plus the driving body force (pass_context.hpp)
       s.ay[i] = ay;
     }
     if constexpr (Scheme::continuity) s.drho[i] = drho;

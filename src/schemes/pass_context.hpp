@@ -24,6 +24,8 @@ struct PhysicsConstants {
   // Walls at y = +-wall_image_y mirror the species in the diffusion sum (particles.wall_images,
   // species/wall_images.hpp); 0: the walls are only skipped.
   double wall_image_y = 0.0;
+  // Body force per mass along x on the fluid [mm/s^2] (fluid.driving = "body_force"), 0 else.
+  double body_force_x = 0.0;
   TaitEos eos;
   ShiftingVelocity shifting;  // set per step (depends on dt)
 };
