@@ -81,9 +81,18 @@ TEST(Flow, BodyForceDrivingLeavesTheDensityUniform) {
       c.fluid.driving = d;
       SphSolver solver(c);
       const double dt = solver.dt_limits().chosen;
-      while (solver.time() < 0.2) ASSERT_TRUE(solver.step(dt)) << solver.failure();
+      // The slope averaged over t in [0.05, 0.1] s: the start's acoustic waves still swing it.
+      double sum = 0.0;
+      int samples = 0;
+      for (long step = 0; solver.time() < 0.1; ++step) {
+        ASSERT_TRUE(solver.step(dt)) << solver.failure();
+        if (solver.time() >= 0.05 && step % 10 == 0) {
+          sum += density_slope(solver, c, 3.0, 17.0);
+          ++samples;
+        }
+      }
       const int k = d == Driving::body_force;
-      slope[k] = density_slope(solver, c, 3.0, 17.0);
+      slope[k] = sum / samples;
       err[k] = poiseuille_l2_error(solver, c);
     }
     std::printf(
@@ -91,8 +100,8 @@ TEST(Flow, BodyForceDrivingLeavesTheDensityUniform) {
         "(Poiseuille %.3e); L2 velocity error %.3f%% / %.3f%%\n",
         scheme == Scheme::modern ? "modern" : "conventional", slope[0], slope[1], expected,
         100 * err[0], 100 * err[1]);
-    EXPECT_NEAR(slope[0], expected, 0.25 * std::fabs(expected));
-    EXPECT_LT(std::fabs(slope[1]), 0.1 * std::fabs(expected));
+    EXPECT_NEAR(slope[0], expected, 0.1 * std::fabs(expected));
+    EXPECT_LT(std::fabs(slope[1]), 0.05 * std::fabs(expected));
     EXPECT_LT(err[1], 0.02);
   }
 }
