@@ -281,3 +281,37 @@ TEST(Species, SubcycledDiffusionMatchesFullStepDiffusion) {
 
 }  // namespace
 }  // namespace adrsph
+
+namespace adrsph {
+namespace {
+
+// The end of a run (run_simulation): the lists and the sub-cycled diffusion's weights are
+// given back before the final frame is written; the state and frame() are untouched, and a
+// step afterwards is refused rather than run on empty lists.
+TEST(Solver, ReleaseSteppingMemoryKeepsTheStateAndRefusesSteps) {
+  Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 20.0);
+  c.species.D = 1000.0;     // the diffusion limit below the flow's (as in
+  c.fluid.c0_factor = 2.0;  // SubcycledDiffusionMatchesFullStepDiffusion): weights held
+  c.time.species_subcycling = true;
+  SphSolver solver(c);
+  ASSERT_GT(solver.dt_limits().diffusion_stages, 0);
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(solver.step(solver.dt_limits().chosen));
+  ASSERT_GT(solver.list_bytes(), 0u);
+  ASSERT_GT(solver.diffusion_weight_bytes(), 0u);
+  std::vector<double> p_before, p_after;
+  const FieldFrame before = solver.frame(p_before);
+  const std::vector<double> c_before(before.c.begin(), before.c.end());
+  const double mean = solver.mean_neighbours();
+
+  solver.release_stepping_memory();
+  EXPECT_EQ(solver.list_bytes(), 0u);
+  EXPECT_EQ(solver.diffusion_weight_bytes(), 0u);
+  EXPECT_EQ(solver.mean_neighbours(), mean);
+  const FieldFrame after = solver.frame(p_after);
+  EXPECT_EQ(std::vector<double>(after.c.begin(), after.c.end()), c_before);
+  EXPECT_EQ(p_after, p_before);
+  EXPECT_THROW(solver.step(solver.dt_limits().chosen), std::logic_error);
+}
+
+}  // namespace
+}  // namespace adrsph

@@ -140,7 +140,8 @@ void RunLoop::sample_outlet() {
 
 void RunLoop::emit_fields() {
   ScopedPhase timer(solver_.timers(), Phase::output);
-  observer_.on_fields(solver_.frame(pressure_pa_));
+  std::vector<double> pressure_pa;  // freed after the frame: not held between frames
+  observer_.on_fields(solver_.frame(pressure_pa));
 }
 
 void RunLoop::report_progress(double change) {

@@ -77,7 +77,7 @@ class RunLoop {
   SteadyStateDetector steady_;
   std::deque<std::pair<double, ProbeTable>> window_;
   ProbeTable last_probes_;
-  std::vector<double> field_times_, pressure_pa_;
+  std::vector<double> field_times_;
   std::size_t next_field_ = 0;
   // Check instants are jittered within +-50% of the interval in Mode::run (fixed seed: runs
   // repeat exactly): at regular instants the rows of particles passing the probes alias into

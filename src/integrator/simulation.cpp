@@ -184,6 +184,7 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
            stations_from(parts[static_cast<std::size_t>(sp)], c.geometry.length)});
   }
   result.stations = stations_from(result.probes, c.geometry.length);
+  solver.release_stepping_memory();
   loop.emit_fields();
   // After the final frame: HDF5's code and buffers count in the run's peak.
   result.peak_rss_bytes = std::max(result.peak_rss_bytes, peak_rss_bytes());

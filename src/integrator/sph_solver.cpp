@@ -6,6 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include "boundaries/boundary_extrapolation.hpp"
 #include "integrator/midpoint.hpp"
 #include "integrator/time_step.hpp"
@@ -414,7 +418,20 @@ void SphSolver::update_buffers(double dt) {
 }
 
 bool SphSolver::step(double dt) {
+  if (released_) throw std::logic_error("SphSolver::step after release_stepping_memory()");
   return (this->*step_fn_)(dt);
+}
+
+void SphSolver::release_stepping_memory() {
+  released_ = true;
+  for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) std::vector<float>().swap(*v);
+  density_predicted_ = false;
+  list_.release();
+  subcycler_.release();
+#ifdef __GLIBC__
+  // Freed blocks below the top of the heap stay resident until trimmed.
+  malloc_trim(0);
+#endif
 }
 
 FieldFrame SphSolver::frame(std::vector<double>& pressure_pa) const {

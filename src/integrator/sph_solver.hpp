@@ -108,6 +108,11 @@ class SphSolver {
   }
   int species_count() const { return 1 + store_.needs().more_species; }
   FieldFrame frame(std::vector<double>& pressure_pa) const;
+  // The end of a run: give back what only stepping needs (neighbour lists, diffusion
+  // weights, predicted displacements and densities), so that writing the final frame and
+  // files does not add HDF5's code and buffers on top of them (perf/README.md, 3.14). The
+  // state, the probes' sampler and frame() stay valid; step() refuses afterwards.
+  void release_stepping_memory();
   // Recompute the derived fields (density, pressure, volumes) and rates of the current state
   // without advancing: used by tests and benchmarks.
   void evaluate();
@@ -166,6 +171,7 @@ class SphSolver {
   std::vector<float> next_dx_, next_dy_;  // displacement of the coming stage (walls 0)
   bool density_predicted_ = false;
   bool predict_density_ = true;
+  bool released_ = false;  // release_stepping_memory() was called
 
   Case case_;
   ChannelScene scene_;

@@ -73,6 +73,13 @@ class NeighbourList {
   std::size_t total() const { return offset_.empty() ? 0 : offset_.back(); }
   bool wide() const { return wide_; }
   double mean_neighbours() const { return mean_; }  // real neighbours (without padding)
+  // Give the entries and row starts back (the end of a run: nothing is stepped after it);
+  // mean_neighbours() keeps its value. A build makes them anew.
+  void release() {
+    std::vector<std::uint32_t>().swap(offset_);
+    std::vector<std::int16_t>().swap(offset16_);
+    std::vector<std::uint32_t>().swap(index_);
+  }
   std::size_t bytes() const {
     return (offset_.capacity() + index_.capacity()) * sizeof(std::uint32_t) +
            offset16_.capacity() * sizeof(std::int16_t);

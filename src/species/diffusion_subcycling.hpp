@@ -36,6 +36,11 @@ class DiffusionSubcycler {
                                                 Plan plan, bool track);
 
   std::size_t bytes() const { return weight_.capacity() * sizeof(float); }
+  // Give the weights and stage arrays back (the end of a run); advance() makes them anew.
+  void release() {
+    std::vector<float>().swap(weight_);
+    for (auto* v : {&y0_, &l0_, &ym1_, &ym2_, &yj_, &rate_}) std::vector<double>().swap(*v);
+  }
 
  private:
   void compute_weights(const ParticleStore& s, const PassContext& ctx);
