@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -169,18 +170,22 @@ TEST(NeighbourList, FallsBackToIndicesWhereAnOffsetDoesNotFitSixteenBits) {
 TEST(DisplacementMonitor, UniformTranslationDoesNotAgeTheLists) {
   Cloud cloud(3);
   DisplacementMonitor monitor;
-  monitor.reset(cloud.x, cloud.y);
+  monitor.reset(cloud.grid, cloud.x, cloud.y);
   for (std::size_t i = 0; i < cloud.x.size(); ++i) {
     cloud.x[i] += 5.0 * kSkin;  // far more than the skin, but all together
     cloud.y[i] -= 2.0 * kSkin;
   }
-  EXPECT_LT(monitor.max_relative(cloud.grid, cloud.x, cloud.y), 1e-5);
+  // What is left is the 16-bit fixed point of the stored build positions (a step of
+  // 2 cut-offs / 65535 = 2.5e-5 mm here), counted twice: in the spread and in its bound.
+  const double bound = monitor.max_relative(cloud.grid, cloud.x, cloud.y);
+  EXPECT_LT(bound, 2e-3 * kSkin);
+  EXPECT_LT(bound, 4.0 * std::sqrt(2.0) * kCutoff / 65535.0 + 1e-6);
 }
 
 TEST(DisplacementMonitor, ShearIsBoundedByTheVelocityJumpAcrossTwoCells) {
   Cloud cloud(5);
   DisplacementMonitor monitor;
-  monitor.reset(cloud.x, cloud.y);
+  monitor.reset(cloud.grid, cloud.x, cloud.y);
   const double rate = 0.01;  // d = (rate * y, 0): displacement difference rate * |y_i - y_j|
   for (std::size_t i = 0; i < cloud.x.size(); ++i) cloud.x[i] += rate * cloud.y[i];
   const double bound = monitor.max_relative(cloud.grid, cloud.x, cloud.y);
@@ -190,12 +195,29 @@ TEST(DisplacementMonitor, ShearIsBoundedByTheVelocityJumpAcrossTwoCells) {
   EXPECT_LE(bound, rate * (2.0 * kCutoff * 1.2 + 0.4 * kDx) + 1e-5);
 }
 
+// The build positions are kept relative to each particle's cell; one that is not where the
+// grid says (here: moved two cells after the sort) is stored wrongly, and the bound must then
+// grow by at least that error instead of hiding it.
+TEST(DisplacementMonitor, AParticleOutsideItsCellWidensTheBound) {
+  Cloud cloud(7);
+  DisplacementMonitor clean;
+  clean.reset(cloud.grid, cloud.x, cloud.y);
+  const double at_rest = clean.max_relative(cloud.grid, cloud.x, cloud.y);
+  EXPECT_LT(at_rest, 1e-3 * kSkin);
+  cloud.x[0] += 2.0 * kCutoff;  // no longer in its cell's range of the sort
+  DisplacementMonitor monitor;
+  monitor.reset(cloud.grid, cloud.x, cloud.y);
+  EXPECT_GT(monitor.max_relative(cloud.grid, cloud.x, cloud.y), 0.5 * kCutoff);
+  std::vector<double> fewer(cloud.x.begin(), cloud.x.end() - 1);
+  EXPECT_THROW(monitor.reset(cloud.grid, fewer, fewer), std::logic_error);
+}
+
 // The safety property: with a random, rough displacement field, as long as the monitor says
 // "keep the lists", every pair closer than the kernel support is in them.
 TEST(DisplacementMonitor, NoPairWithinTheSupportIsMissedWhileTheListsAreKept) {
   Cloud cloud(11);
   DisplacementMonitor monitor;
-  monitor.reset(cloud.x, cloud.y);
+  monitor.reset(cloud.grid, cloud.x, cloud.y);
   std::mt19937 rng(42);
   std::normal_distribution<double> kick(0.0, 0.02 * kSkin);
   const std::size_t n = cloud.x.size();
@@ -207,7 +229,7 @@ TEST(DisplacementMonitor, NoPairWithinTheSupportIsMissedWhileTheListsAreKept) {
     }
     if (monitor.max_relative(cloud.grid, cloud.x, cloud.y) > kSkin) {
       cloud.build();
-      monitor.reset(cloud.x, cloud.y);
+      monitor.reset(cloud.grid, cloud.x, cloud.y);
       ++rebuilds;
       continue;
     }

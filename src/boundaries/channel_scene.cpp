@@ -53,8 +53,12 @@ std::size_t ChannelScene::initial_count() const {
 void ChannelScene::initialise(ParticleStore& s) const {
   s.resize(0);
   s.mass = rho0_ * dx_ * dx_;
-  // Exact room, plus two inflow rows for the feed (re-sorts drop outflow particles as fast).
-  s.reserve(initial_count() + 2 * row_y_.size());
+  // Room for 3% more particles than the lattice: the fluid compresses as the pressure
+  // gradient builds up (+0.4% particles at fine resolution in a pressure-driven start). A
+  // store that grows in a run moves its arrays one by one and keeps ~one array more resident
+  // (+0.5 MB at fine resolution, measured); room never written costs no resident memory.
+  const std::size_t n = initial_count();
+  s.reserve(n + n / 32 + 2 * row_y_.size());
   std::mt19937_64 rng(kJitterSeed);
   std::uniform_real_distribution<double> offset(-jitter_ * dx_, jitter_ * dx_);
   for_each_initial([&](double x, double y, Kind k) {
@@ -117,17 +121,17 @@ ChannelScene::Crossings ChannelScene::update_kinds(ParticleStore& s) const {
   return c;
 }
 
-void ChannelScene::feed_and_drain(ParticleStore& s, std::vector<char>& keep, long& lost) {
+void ChannelScene::feed_and_drain(ParticleStore& s, long& lost) {
   const double x_drop = length_ + outlet_layers_ * dx_;
   const double x_lost = -inlet_layers_ * dx_;
   const std::size_t n = s.size();
-  keep.assign(n, 1);
+  const double removed = std::nan("");
   for (std::size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Kind>(s.kind[i]);
-    if (k == Kind::outlet && (s.x[i] > x_drop || std::fabs(s.y[i]) > half_width_)) keep[i] = 0;
+    if (k == Kind::outlet && (s.x[i] > x_drop || std::fabs(s.y[i]) > half_width_)) s.x[i] = removed;
     if (k == Kind::fluid && (std::fabs(s.y[i]) > half_width_ || s.x[i] < x_lost ||
                              !std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))) {
-      keep[i] = 0;
+      s.x[i] = removed;
       ++lost;
     }
   }
@@ -138,7 +142,6 @@ void ChannelScene::feed_and_drain(ParticleStore& s, std::vector<char>& keep, lon
       row_tail_x_[r] -= dx_;
       s.push_back(row_tail_x_[r], row_y_[r], inflow_velocity(row_y_[r]), 0.0, rho0_, c_in_[0],
                   Kind::inlet, more(c_in_));
-      keep.push_back(1);
     }
   }
 }

@@ -54,10 +54,10 @@ class ChannelScene {
   };
   // Kind changes that keep indices: inlet -> fluid at x >= 0, fluid -> outlet at x >= L.
   Crossings update_kinds(ParticleStore& s) const;
-  // At a re-sort: feed new inlet particles and mark particles to remove. keep[i] = 0 for
-  // outlet particles past the buffer and for fluid particles that left through a wall or the
-  // inlet (those are counted in `lost`).
-  void feed_and_drain(ParticleStore& s, std::vector<char>& keep, long& lost);
+  // At a re-sort: feed new inlet particles and mark particles to remove with x = NaN (the
+  // sort then drops them): outlet particles past the buffer and fluid particles that left
+  // through a wall or the inlet (those are counted in `lost`).
+  void feed_and_drain(ParticleStore& s, long& lost);
 
   // The inflow row generators (checkpoint/restart).
   const std::vector<double>& inflow_row_tails() const { return row_tail_x_; }

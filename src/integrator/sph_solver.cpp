@@ -106,17 +106,25 @@ std::size_t SphSolver::fluid_count() const {
 }
 
 void SphSolver::rebuild() {
+  // The sort's order is kept in the displacement monitor's array (one 32-bit word per
+  // particle, dead until the monitor is reset after the list build): a re-sort allocates
+  // nothing per particle but the permutation's cycle leaders and a bit per particle.
+  std::vector<std::uint32_t> order = monitor_.release_storage();
   {
     ScopedPhase timer(timers_, Phase::sort);
-    // The sort's work arrays live only here (9 bytes per particle): a field write or a
-    // checkpoint between rebuilds, which adds HDF5's own memory, does not find them held.
-    std::vector<char> keep;
-    std::vector<std::uint32_t> order, outside;
-    scene_.feed_and_drain(store_, keep, lost_);
+    std::vector<std::uint32_t> outside;
+    const std::size_t capacity = store_.capacity();
+    scene_.feed_and_drain(store_, lost_);  // removed particles get x = NaN
+    // The store grew (the fluid compresses as the pressure gradient builds up): its fields
+    // were moved one by one, and the holes they left in the heap (one field, ~0.6 MB at fine
+    // resolution) would stay resident.
+    if (store_.capacity() != capacity) trim_heap();
     const std::size_t n = store_.size();
-    // Removed particles are sent outside the grid so the counting sort drops them.
-    for (std::size_t i = 0; i < n; ++i)
-      if (!keep[i]) store_.x[i] = std::nan("");
+    if (order.capacity() < n) {  // more particles than at the last build: headroom as the store
+      std::vector<std::uint32_t>().swap(order);
+      order.reserve(n + n / 32 + 64);
+    }
+    // Removed particles are outside the grid (x = NaN), so the counting sort drops them.
     grid_.sort(std::span(store_.x).first(n), std::span(store_.y).first(n), order, outside);
     for (std::uint32_t i : outside)
       if (std::isfinite(store_.x[i]) && store_.kind[i] == kFluidByte) ++lost_;
@@ -127,7 +135,8 @@ void SphSolver::rebuild() {
     const std::size_t n = store_.size();
     list_.build(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n), cutoff_,
                 static_cast<std::uint32_t>(n));
-    monitor_.reset(std::span(store_.x).first(n), std::span(store_.y).first(n));
+    monitor_.reset(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n),
+                   std::move(order));
   }
   moved_abs_ = 0.0;
   density_predicted_ = false;  // indices changed
@@ -427,7 +436,12 @@ void SphSolver::release_stepping_memory() {
   for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) std::vector<float>().swap(*v);
   density_predicted_ = false;
   list_.release();
+  (void)monitor_.release_storage();
   subcycler_.release();
+  trim_heap();
+}
+
+void SphSolver::trim_heap() {
 #ifdef __GLIBC__
   // Freed blocks below the top of the heap stay resident until trimmed.
   malloc_trim(0);

@@ -189,6 +189,7 @@ class SphSolver {
   // support; the probe search widens with it, sampler()). Once 2 moved_abs_ > skin, the monitor
   // bounds the relative displacement of possible pairs (displacement_monitor.hpp).
   bool needs_rebuild();
+  void trim_heap();  // give freed heap pages back to the system (glibc)
   DisplacementMonitor monitor_;
   long rebuilds_ = 0;
   double cutoff_ = 0.0, skin_ = 0.0, moved_abs_ = 0.0;

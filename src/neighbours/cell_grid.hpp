@@ -52,14 +52,21 @@ class CellGrid {
     }
   }
 
+  // Lower-left corner of the cell of rank r, and the cell size.
+  double cell_x0(int r) const { return xmin_ + (cell_of_rank_[r] % nx_) * cell_; }
+  double cell_y0(int r) const { return ymin_ + (cell_of_rank_[r] / nx_) * cell_; }
+  double cell_size() const { return cell_; }
+  int cells() const { return nx_ * ny_; }
+
   // After sort(): particles of cell rank r are [cell_start(r), cell_start(r + 1)) in sorted order.
   std::uint32_t cell_start(int r) const { return start_[r]; }
   std::span<const std::uint32_t> starts() const { return start_; }
 
  private:
-  double xmin_ = 0, xmax_ = 0, ymin_ = 0, ymax_ = 0, inv_cell_ = 1;
+  double xmin_ = 0, xmax_ = 0, ymin_ = 0, ymax_ = 0, inv_cell_ = 1, cell_ = 1;
   int nx_ = 0, ny_ = 0;
   std::vector<int> rank_;             // cell id (cy * nx + cx) -> Morton rank
+  std::vector<int> cell_of_rank_;     // Morton rank -> cell id
   std::vector<std::uint32_t> start_;  // size n_cells + 1
 };
 

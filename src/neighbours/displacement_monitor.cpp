@@ -3,21 +3,40 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <stdexcept>
 
 namespace adrsph {
 
-void DisplacementMonitor::reset(std::span<const double> x, std::span<const double> y) {
+namespace {
+constexpr double kLevels = 65535.0;
+}  // namespace
+
+void DisplacementMonitor::reset(const CellGrid& grid, std::span<const double> x,
+                                std::span<const double> y, std::vector<std::uint32_t> storage) {
   const std::size_t n = x.size();
-  xb_.resize(n);
-  yb_.resize(n);
-  double extent = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : extent)
-  for (std::size_t i = 0; i < n; ++i) {
-    xb_[i] = static_cast<float>(x[i]);
-    yb_[i] = static_cast<float>(y[i]);
-    extent = std::max(extent, std::max(std::fabs(x[i]), std::fabs(y[i])));
+  const int cells = grid.cells();
+  if (grid.cell_start(cells) != n)
+    throw std::logic_error("DisplacementMonitor::reset: the particles are not sorted by the grid");
+  packed_ = std::move(storage);
+  packed_.resize(n);
+  const double cell = grid.cell_size();
+  step_ = 2.0 * cell / kLevels;
+  const double inv_step = 1.0 / step_;
+  double error = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : error)
+  for (int r = 0; r < cells; ++r) {
+    const double ox = grid.cell_x0(r) - 0.5 * cell, oy = grid.cell_y0(r) - 0.5 * cell;
+    for (std::uint32_t i = grid.cell_start(r); i < grid.cell_start(r + 1); ++i) {
+      // Clamped, so a particle outside its cell is stored wrongly but not wrapped around; the
+      // error it makes is measured and enters the bound.
+      const double qx = std::clamp(std::nearbyint((x[i] - ox) * inv_step), 0.0, kLevels);
+      const double qy = std::clamp(std::nearbyint((y[i] - oy) * inv_step), 0.0, kLevels);
+      packed_[i] = static_cast<std::uint32_t>(qx) << 16 | static_cast<std::uint32_t>(qy);
+      error =
+          std::max({error, std::fabs(ox + qx * step_ - x[i]), std::fabs(oy + qy * step_ - y[i])});
+    }
   }
-  rounding_ = extent * FLT_EPSILON;  // half an ulp is eps/2 of the value; keep a factor 2
+  error_ = error;
 }
 
 double DisplacementMonitor::max_relative(const CellGrid& grid, std::span<const double> x,
@@ -26,12 +45,17 @@ double DisplacementMonitor::max_relative(const CellGrid& grid, std::span<const d
   const int cells = nx * ny;
   box_.resize(4 * static_cast<std::size_t>(cells));
   float* box = box_.data();
+  const double cell = grid.cell_size();
   // Displacement bounding box of every cell's particles (contiguous after the sort).
-#pragma omp parallel for schedule(static)
+  double largest = 0.0;  // largest |displacement component|, for the float rounding
+#pragma omp parallel for schedule(static) reduction(max : largest)
   for (int r = 0; r < cells; ++r) {
+    const double ox = grid.cell_x0(r) - 0.5 * cell, oy = grid.cell_y0(r) - 0.5 * cell;
     float lx = FLT_MAX, hx = -FLT_MAX, ly = FLT_MAX, hy = -FLT_MAX;
     for (std::uint32_t i = grid.cell_start(r); i < grid.cell_start(r + 1); ++i) {
-      const auto dx = static_cast<float>(x[i] - xb_[i]), dy = static_cast<float>(y[i] - yb_[i]);
+      const double xb = ox + static_cast<double>(packed_[i] >> 16) * step_;
+      const double yb = oy + static_cast<double>(packed_[i] & 0xffffu) * step_;
+      const auto dx = static_cast<float>(x[i] - xb), dy = static_cast<float>(y[i] - yb);
       lx = std::min(lx, dx);
       hx = std::max(hx, dx);
       ly = std::min(ly, dy);
@@ -41,6 +65,9 @@ double DisplacementMonitor::max_relative(const CellGrid& grid, std::span<const d
     box[4 * r + 1] = hx;
     box[4 * r + 2] = ly;
     box[4 * r + 3] = hy;
+    if (lx <= hx)
+      largest = std::max({largest, static_cast<double>(-lx), static_cast<double>(hx),
+                          static_cast<double>(-ly), static_cast<double>(hy)});
   }
   // Spread of the union of the two boxes over each cell and its neighbours (half stencil:
   // every unordered pair of adjacent cells once, the cell with itself included).
@@ -62,9 +89,10 @@ double DisplacementMonitor::max_relative(const CellGrid& grid, std::span<const d
       }
     }
   }
-  // Float build positions and displacements: each d_i carries up to `rounding_` plus the
-  // rounding of the displacement itself.
-  return std::sqrt(worst2) + 2.0 * rounding_;
+  // Each stored build position is off by up to error_ per coordinate (sqrt(2) error_ as a
+  // vector), so a pair's displacement difference by twice that; each float displacement
+  // component is rounded by at most half an ulp of the largest.
+  return std::sqrt(worst2) + 2.0 * std::sqrt(2.0) * error_ + 2.0 * largest * FLT_EPSILON;
 }
 
 }  // namespace adrsph

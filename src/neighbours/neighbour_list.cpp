@@ -12,7 +12,10 @@ constexpr std::integral_constant<int, 1> kOneRing{};  // the 3x3 cells around a 
 // second largest block of a run, after the particle arrays); the other form is released.
 template <class T, class U>
 void size_entries(std::vector<T>& used, std::vector<U>& other, std::size_t total) {
-  if (total > used.capacity()) used.reserve(total + total / 32);
+  if (total > used.capacity()) {  // the old entries are rewritten: freed first, not copied
+    std::vector<T>().swap(used);
+    used.reserve(total + total / 32);
+  }
   used.resize(total);
   std::vector<U>().swap(other);
 }

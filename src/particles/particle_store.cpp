@@ -6,40 +6,41 @@
 namespace adrsph {
 
 namespace {
-// The cycles of the permutation i -> from(i), fixed points left out: cycle k is
-// path[ends[k-1] .. ends[k]), each position followed by the one it takes its value from.
-struct Cycles {
-  std::vector<std::uint32_t> path, ends;
-};
+// The cycles of the permutation i -> from(i), fixed points left out: one position of each
+// cycle (its leader) is returned; the cycle is walked again from it by following from().
+// A re-sort's permutation is a few long cycles (a particle that changes cell shifts every
+// particle between its old and new place by one): a list of their positions would cost four
+// bytes per particle at every re-sort, the leaders a few bytes in all.
 template <class From>
-Cycles cycles_of(std::size_t n, From from, std::vector<bool>& seen) {
-  Cycles c;
+std::vector<std::uint32_t> cycle_leaders(std::size_t n, From from, std::vector<bool>& seen) {
+  std::vector<std::uint32_t> leaders;
   seen.assign(n, false);
   for (std::size_t start = 0; start < n; ++start) {
     if (seen[start] || from(start) == start) continue;
     std::size_t j = start;
     do {
       seen[j] = true;
-      c.path.push_back(static_cast<std::uint32_t>(j));
       j = from(j);
     } while (j != start);
-    c.ends.push_back(static_cast<std::uint32_t>(c.path.size()));
+    leaders.push_back(static_cast<std::uint32_t>(start));
   }
-  return c;
+  return leaders;
 }
 
 // a[i] = old a[from(i)], in place: along each cycle every value moves one place, one value
 // held aside. No second array: the store is most of a run's memory, and a copy of its largest
-// field for a gather cost 13 bytes per particle. A re-sort moves few particles and those
-// within a few cells: the cycles are short and stay in cache.
-template <class T>
-void permute_in_place(std::vector<T>& a, const Cycles& c) {
-  std::uint32_t first = 0;
-  for (std::uint32_t end : c.ends) {
-    const T held = a[c.path[first]];
-    for (std::uint32_t k = first; k + 1 < end; ++k) a[c.path[k]] = a[c.path[k + 1]];
-    a[c.path[end - 1]] = held;
-    first = end;
+// field for a gather cost 13 bytes per particle. A re-sort moves particles within a few cells:
+// the cycle steps stay close in memory.
+template <class T, class From>
+void permute_in_place(std::vector<T>& a, From from, std::span<const std::uint32_t> leaders) {
+  for (const std::uint32_t start : leaders) {
+    const T held = a[start];
+    std::size_t j = start;
+    for (std::size_t f = from(j); f != start; f = from(j)) {
+      a[j] = a[f];
+      j = f;
+    }
+    a[j] = held;
   }
 }
 }  // namespace
@@ -126,9 +127,9 @@ void ParticleStore::permute(std::span<const std::uint32_t> order) {
   const auto from = [&](std::size_t j) -> std::size_t {
     return j < kept ? order[j] : removed[j - kept];
   };
-  const Cycles cycles = cycles_of(n, from, done);
+  const std::vector<std::uint32_t> leaders = cycle_leaders(n, from, done);
   for_each_field(*this, [&](auto& a, Role role, const char*) {
-    if (carried(role)) permute_in_place(a, cycles);
+    if (carried(role)) permute_in_place(a, from, leaders);
     a.resize(kept + 1);  // shrinking: the capacity stays
   });
   n_ = kept;

@@ -70,7 +70,8 @@ struct ParticleStore {
 
   // Set the number of real particles (arrays get n + 1 entries; the padding particle is reset).
   // Growing past the capacity adds ~3% headroom, not std::vector's doubling: the store is
-  // most of the memory of a run.
+  // most of the memory of a run. (Capacity never written is not resident: arrays this large
+  // are mapped pages of their own.)
   void resize(std::size_t n);
   // Make room for n particles (plus the padding one) in every array, exactly.
   void reserve(std::size_t n);
