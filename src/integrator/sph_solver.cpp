@@ -213,9 +213,8 @@ void SphSolver::evaluate_impl(double a_next, bool from_start) {
 // q1 = q0 + dt f(q_h), q0 recovered from q_h and the first-stage rates. Positions move with
 // the transport velocity of their stage (u + du for the fluid of a shifting scheme, eq. (10)).
 // Non-finite rates count as zero and are added to bad_rates_ (the step then fails).
-template <class S, int Stage, bool Net, bool Measure>
-void SphSolver::advance(double dt, StateBounds* bounds) {
-  static_assert(!Measure || Stage == 2, "the guards read the state at the end of the step");
+template <class S, int Stage, bool Net>
+void SphSolver::advance(double dt) {
   using midpoint::rate_or_zero, midpoint::finite_rate;
   ScopedPhase timer(timers_, Phase::integration);
   ParticleStore& s = store_;
@@ -225,11 +224,7 @@ void SphSolver::advance(double dt, StateBounds* bounds) {
   const bool keep_c = s.needs().species_start;
   const int more = Net ? s.needs().more_species : 0;
   long bad = 0;
-  [[maybe_unused]] const StateProbe probe = Measure ? state_probe() : StateProbe{};
-  double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0, c_dev = 0.0;
-  int bad_state = 0;
-#pragma omp parallel for schedule(static) reduction(+ : bad, bad_state) \
-    reduction(max : vmax2, tmax2, drho_max, c_dev)
+#pragma omp parallel for schedule(static) reduction(+ : bad)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t k = s.kind[i];
     if (k == kWallByte) continue;
@@ -288,12 +283,8 @@ void SphSolver::advance(double dt, StateBounds* bounds) {
     }
     // Counted once, at stage 2, which reads the rates of both stages.
     if constexpr (Stage == 2) bad += nonfinite > 0 ? 1 : 0;
-    // The guards' reading of particle i, while its new state is in registers and cache: a
-    // pass of its own over the store was 1.4% of a fine run.
-    if constexpr (Measure) probe.add(s, i, vmax2, tmax2, drho_max, c_dev, bad_state);
   }
   bad_rates_ += bad;
-  if constexpr (Measure) *bounds = {vmax2, tmax2, drho_max, c_dev, bad_state};
 }
 
 template <class S, bool Ale, bool Split, bool Net>
@@ -324,18 +315,11 @@ bool SphSolver::step_impl(double dt) {
       exchange[static_cast<std::size_t>(e)] =
           dt * species_buffer_exchange_rate(store_, {kernel_, list_, phys_},
                                             store_.concentration(e).data(), case_.species_at(e).D);
+  advance<S, 2, Net>(dt);
+  if constexpr (Split) exchange = diffuse_species(dt);
   // Guards before anything outside the particle state changes: a failed step restores the
-  // start state and leaves kinds, inflow rows, ledger and time as they were. Without
-  // sub-cycled diffusion the state is final after stage 2, which takes the guards' bounds.
-  if constexpr (Split) {
-    advance<S, 2, Net>(dt);
-    exchange = diffuse_species(dt);
-    if (!check_state(dt)) return false;
-  } else {
-    StateBounds bounds;
-    advance<S, 2, Net, true>(dt, &bounds);
-    if (!check_state(dt, &bounds)) return false;
-  }
+  // start state and leaves kinds, inflow rows, ledger and time as they were.
+  if (!check_state(dt)) return false;
   for (int e = 0; e < Case::kMaxSpecies; ++e)
     ledgers_[static_cast<std::size_t>(e)].buffer_exchange += exchange[static_cast<std::size_t>(e)];
   react(dt);

@@ -15,7 +15,6 @@
 #include "boundaries/channel_scene.hpp"
 #include "case/failure_advice.hpp"
 #include "integrator/phase_timers.hpp"
-#include "integrator/state_bounds.hpp"
 #include "neighbours/cell_grid.hpp"
 #include "neighbours/displacement_monitor.hpp"
 #include "neighbours/neighbour_list.hpp"
@@ -149,13 +148,9 @@ class SphSolver {
   template <class S, bool Ale, bool Net>
   void bind(bool split);
   // The update of stage 1 or 2 of the explicit midpoint step of size dt (midpoint.hpp).
-  // Measure (stage 2 only): also take the guards' bounds of the new state into *bounds.
-  template <class S, int Stage, bool Net, bool Measure = false>
-  void advance(double dt, StateBounds* bounds = nullptr);
-  // The guards: false (and the step undone) if the new state fails one. `measured`: the
-  // bounds advance() took; null to take them here (after sub-cycled diffusion).
-  bool check_state(double dt, const StateBounds* measured = nullptr);
-  StateProbe state_probe() const;
+  template <class S, int Stage, bool Net>
+  void advance(double dt);
+  bool check_state(double dt);
   // A failed step of size dt: every particle back to its start state (midpoint.hpp).
   void undo_step(double dt);
   long bad_rates_ = 0;  // fluid particles with a non-finite rate this step (taken as zero)

@@ -7,12 +7,23 @@
 
 #include "integrator/midpoint.hpp"
 #include "integrator/sph_solver.hpp"
-#include "integrator/state_bounds.hpp"
 #include "species/inlet_feed.hpp"
 
 namespace adrsph {
 
 namespace {
+// |transport velocity|^2 of particle i: how far it moves (u + du for a shifting scheme's
+// fluid particles, u otherwise; sx, sy exist only for a shifting scheme).
+inline double transport_speed2(const ParticleStore& s, std::size_t i, bool shifting) {
+  const bool shifts = shifting && s.kind[i] == kFluidByte;
+  const double tx = s.vx[i] + (shifts ? s.sx[i] : 0.0), ty = s.vy[i] + (shifts ? s.sy[i] : 0.0);
+  return tx * tx + ty * ty;
+}
+// Every value the guards read of particle i is finite (t2: its transport_speed2).
+inline bool finite_state(const ParticleStore& s, std::size_t i, double t2) {
+  return std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && std::isfinite(t2) &&
+         std::isfinite(s.rho[i]) && std::isfinite(s.c[i]);
+}
 // Every rate of this step of fluid particle i is finite (advance() took the others as zero).
 bool finite_rates(const ParticleStore& s, std::size_t i) {
   using midpoint::finite_rate;
@@ -83,39 +94,44 @@ bool SphSolver::report_lost() {
   return false;
 }
 
-StateProbe SphSolver::state_probe() const {
-  StateProbe probe;
-  // Diffusion and reaction keep C within [0, c_max] (maximum principle); the dilatation term
-  // may move it slightly. A species step beyond its stability limit leaves this band fast.
-  // A network's species share one band: none can exceed the moles all of them bring in.
-  for (int sp = 0; sp < case_.species_count(); ++sp)
-    probe.c_max += std::max(feed_max(case_.species_at(sp)), case_.species_at(sp).c_init);
-  probe.rho0 = case_.fluid.rho0;
-  probe.more = store_.needs().more_species;
-  probe.shifting = store_.needs().shifting;  // sx, sy exist only for a shifting scheme
-  return probe;
-}
-
-bool SphSolver::check_state(double dt, const StateBounds* measured) {
+bool SphSolver::check_state(double dt) {
   ScopedPhase timer(timers_, Phase::integration);
   ParticleStore& s = store_;
   const std::size_t n = s.size();
-  const StateProbe probe = state_probe();
-  StateBounds b;
-  if (measured) {
-    b = *measured;  // taken by advance() as it wrote the state
-  } else {
-    double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0, c_dev = 0.0;
-    int bad = 0;
+  int bad = 0;
+  double vmax2 = 0.0, tmax2 = 0.0, drho_max = 0.0, c_dev = 0.0;
+  // Diffusion and reaction keep C within [0, c_max] (maximum principle); the dilatation term
+  // may move it slightly. A species step beyond its stability limit leaves this band fast.
+  // A network's species share one band: none can exceed the moles all of them bring in.
+  double c_max = 0.0;
+  for (int sp = 0; sp < case_.species_count(); ++sp)
+    c_max += std::max(feed_max(case_.species_at(sp)), case_.species_at(sp).c_init);
+  const int more = s.needs().more_species;
+  // The largest distance of particle i's C (any species) outside [0, c_max]; NaN if not finite.
+  auto c_outside = [&](std::size_t i) {
+    double d = std::max(s.c[i] - c_max, -s.c[i]);
+    for (int e = 0; e < more; ++e) d = std::max({d, s.c_more[e][i] - c_max, -s.c_more[e][i]});
+    for (int e = 0; e < more; ++e)
+      if (!std::isfinite(s.c_more[e][i])) return std::nan("");
+    return d;
+  };
+  const double rho0 = case_.fluid.rho0;
+  const bool shifting = s.needs().shifting;  // sx, sy exist only for a shifting scheme
 #pragma omp parallel for schedule(static) reduction(max : vmax2, tmax2, drho_max, c_dev) reduction(+ : bad)
-    for (std::size_t i = 0; i < n; ++i)
-      if (s.kind[i] != kWallByte) probe.add(s, i, vmax2, tmax2, drho_max, c_dev, bad);
-    b = {vmax2, tmax2, drho_max, c_dev, bad};
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] == kWallByte) continue;
+    const double v2 = s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i];  // fluid velocity (Mach check)
+    const double t2 = transport_speed2(s, i, shifting);
+    const double c_off = more > 0 ? c_outside(i) : std::max(s.c[i] - c_max, -s.c[i]);
+    const bool finite = finite_state(s, i, t2) && std::isfinite(c_off);
+    bad += finite ? 0 : 1;
+    vmax2 = std::max(vmax2, finite ? v2 : 0.0);
+    tmax2 = std::max(tmax2, finite ? t2 : 0.0);
+    drho_max = std::max(drho_max, finite ? std::fabs(s.rho[i] / rho0 - 1.0) : 0.0);
+    if (finite) c_dev = std::max(c_dev, c_off);
   }
-  const double c_max = probe.c_max, rho0 = probe.rho0, drho_max = b.drho_max, c_dev = b.c_dev;
-  const int bad = b.bad + static_cast<int>(bad_rates_);  // + fluid particles with a
-                                                         // non-finite rate (advance())
-  const double vmax = std::sqrt(b.vmax2);
+  bad += static_cast<int>(bad_rates_);  // fluid particles with a non-finite rate (advance())
+  const double vmax = std::sqrt(vmax2);
   FailureKind kind = FailureKind::none;
   if (bad > 0)
     kind = FailureKind::non_finite;
@@ -126,7 +142,7 @@ bool SphSolver::check_state(double dt, const StateBounds* measured) {
   else if (c_dev > 0.5 * c_max)
     kind = FailureKind::concentration;
   if (kind == FailureKind::none) {
-    const double tmax = std::sqrt(b.tmax2);
+    const double tmax = std::sqrt(tmax2);
     moved_abs_ += tmax * dt;
     return true;
   }
@@ -140,8 +156,8 @@ bool SphSolver::check_state(double dt, const StateBounds* measured) {
     double value = 0.0;
     switch (kind) {
       case FailureKind::non_finite:
-        value = StateProbe::finite_state(s, i, probe.transport_speed2(s, i)) &&
-                        std::isfinite(probe.c_outside(s, i)) &&
+        value = finite_state(s, i, transport_speed2(s, i, shifting)) &&
+                        std::isfinite(c_outside(i)) &&
                         (s.kind[i] != kFluidByte || finite_rates(s, i))
                     ? 0.0
                     : 1.0;
@@ -154,7 +170,7 @@ bool SphSolver::check_state(double dt, const StateBounds* measured) {
         value = std::fabs(s.rho[i] / rho0 - 1.0);
         break;
       default:
-        value = probe.c_outside(s, i);
+        value = c_outside(i);
         break;
     }
     if (value > worst_value) {
