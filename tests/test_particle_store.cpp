@@ -2,7 +2,10 @@
 // store, and every carried array follows its particle through a re-sort.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <numeric>
+#include <random>
 #include <set>
 #include <type_traits>
 #include <vector>
@@ -60,6 +63,39 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
   EXPECT_GT(s.x[s.size()], 1e11);
   EXPECT_EQ(s.vol[s.size()], 0.0f);
   EXPECT_EQ(s.diffusion_mask[s.size()], 0.0f);
+}
+
+// The in-place permutation walks each cycle from its leader: random orders (fixed points,
+// short and long cycles, removed particles) and the shift a re-sort typically makes (one
+// particle moved to another cell moves every particle between by one place).
+TEST(ParticleStore, PermuteInPlaceMatchesAGatherForAnyOrder) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::size_t n = 1 + rng() % 300;
+    ParticleStore s;
+    s.mass = 1.0;
+    for (std::size_t i = 0; i < n; ++i)
+      s.push_back(static_cast<double>(i), -static_cast<double>(i), 0.0, 0.0, 1.0, 0.5 * i,
+                  Kind::fluid);
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    if (trial % 4 == 0) {  // a shift: particle a moves to place b
+      const std::size_t a = rng() % n, b = rng() % n;
+      const std::uint32_t moved = order[a];
+      order.erase(order.begin() + static_cast<std::ptrdiff_t>(a));
+      order.insert(order.begin() + static_cast<std::ptrdiff_t>(b), moved);
+    } else {
+      std::shuffle(order.begin(), order.end(), rng);
+    }
+    order.resize(n - rng() % (n / 4 + 1));  // the ones cut off are removed
+    s.permute(order);
+    ASSERT_EQ(s.size(), order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      ASSERT_EQ(s.x[k], static_cast<double>(order[k])) << "trial " << trial << ", place " << k;
+      ASSERT_EQ(s.y[k], -static_cast<double>(order[k]));
+      ASSERT_EQ(s.c[k], 0.5 * order[k]);
+    }
+  }
 }
 
 // The first evaluation's rates become the first-stage rates by a swap of buffers: the
