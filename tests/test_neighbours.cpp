@@ -212,6 +212,26 @@ TEST(DisplacementMonitor, AParticleOutsideItsCellWidensTheBound) {
   EXPECT_THROW(monitor.reset(cloud.grid, fewer, fewer), std::logic_error);
 }
 
+// The stored build positions are rounded to a fixed-point step (2 cells / 65535), and the
+// rounding can hide a real displacement: two particles of one cell stored half a step off in
+// opposite directions, one moved by a step, look as if neither had moved. The bound adds
+// the storage error it measured and still covers the real displacement.
+TEST(DisplacementMonitor, BoundCoversWhatTheStoredRoundingHides) {
+  CellGrid grid(0.0, 1.0, 0.0, 1.0, 1.0);  // one cell; its fixed-point range starts at -0.5
+  const double step = 2.0 / 65535.0;
+  std::vector<double> x = {-0.5 + (20000.5 + 1e-3) * step,   // stored half a step up
+                           -0.5 + (30000.5 - 1e-3) * step};  // stored half a step down
+  std::vector<double> y = {-0.5 + 40000 * step, -0.5 + 40000 * step};
+  std::vector<std::uint32_t> order, outside;
+  grid.sort(x, y, order, outside);
+  ASSERT_EQ(order, (std::vector<std::uint32_t>{0, 1}));
+  DisplacementMonitor monitor;
+  monitor.reset(grid, x, y);
+  x[0] += step;  // the real relative displacement: one step
+  EXPECT_GE(monitor.max_relative(grid, x, y), step);
+  EXPECT_LT(monitor.max_relative(grid, x, y), 3.0 * step);  // and not much more
+}
+
 // The safety property: with a random, rough displacement field, as long as the monitor says
 // "keep the lists", every pair closer than the kernel support is in them.
 TEST(DisplacementMonitor, NoPairWithinTheSupportIsMissedWhileTheListsAreKept) {

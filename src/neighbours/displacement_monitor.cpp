@@ -9,6 +9,15 @@ namespace adrsph {
 
 namespace {
 constexpr double kLevels = 65535.0;
+
+// The origin of the fixed-point range of cell rank r: half a cell below its lower-left corner.
+struct Origin {
+  double x, y;
+};
+Origin range_origin(const CellGrid& grid, int r) {
+  const double half = 0.5 * grid.cell_size();
+  return {grid.cell_x0(r) - half, grid.cell_y0(r) - half};
+}
 }  // namespace
 
 void DisplacementMonitor::reset(const CellGrid& grid, std::span<const double> x,
@@ -19,13 +28,12 @@ void DisplacementMonitor::reset(const CellGrid& grid, std::span<const double> x,
     throw std::logic_error("DisplacementMonitor::reset: the particles are not sorted by the grid");
   packed_ = std::move(storage);
   packed_.resize(n);
-  const double cell = grid.cell_size();
-  step_ = 2.0 * cell / kLevels;
+  step_ = 2.0 * grid.cell_size() / kLevels;
   const double inv_step = 1.0 / step_;
   double error = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : error)
   for (int r = 0; r < cells; ++r) {
-    const double ox = grid.cell_x0(r) - 0.5 * cell, oy = grid.cell_y0(r) - 0.5 * cell;
+    const auto [ox, oy] = range_origin(grid, r);
     for (std::uint32_t i = grid.cell_start(r); i < grid.cell_start(r + 1); ++i) {
       // Clamped, so a particle outside its cell is stored wrongly but not wrapped around; the
       // error it makes is measured and enters the bound.
@@ -45,12 +53,11 @@ double DisplacementMonitor::max_relative(const CellGrid& grid, std::span<const d
   const int cells = nx * ny;
   box_.resize(4 * static_cast<std::size_t>(cells));
   float* box = box_.data();
-  const double cell = grid.cell_size();
   // Displacement bounding box of every cell's particles (contiguous after the sort).
   double largest = 0.0;  // largest |displacement component|, for the float rounding
 #pragma omp parallel for schedule(static) reduction(max : largest)
   for (int r = 0; r < cells; ++r) {
-    const double ox = grid.cell_x0(r) - 0.5 * cell, oy = grid.cell_y0(r) - 0.5 * cell;
+    const auto [ox, oy] = range_origin(grid, r);
     float lx = FLT_MAX, hx = -FLT_MAX, ly = FLT_MAX, hy = -FLT_MAX;
     for (std::uint32_t i = grid.cell_start(r); i < grid.cell_start(r + 1); ++i) {
       const double xb = ox + static_cast<double>(packed_[i] >> 16) * step_;
