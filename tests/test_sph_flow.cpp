@@ -195,6 +195,32 @@ TEST(Flow, FluidMassChangesOnlyByCrossings) {
   EXPECT_EQ(solver.lost_particles(), 0);
 }
 
+// The outflow buffer carries the background state (p_b at rho0) that the walls near the
+// outlet sample: each scheme's density pass sets it before the boundary pass reads it
+// (density_passes.hpp, outflow_state), whatever the buffer held before.
+TEST(Flow, OutflowBufferGetsTheBackgroundStateAtEachEvaluation) {
+  for (Scheme scheme : {Scheme::modern, Scheme::conventional}) {
+    SphSolver solver(testing::short_channel(scheme, Flow::wcsph, 20.0));
+    ParticleStore& s = solver.particles();
+    int outlet = 0;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (s.kind[i] == kOutletByte) {
+        s.p[i] = s.vol[i] = 123.0f;  // what a fluid particle may carry as it crosses
+        s.rho[i] = 1.5 * solver.physics().eos.rho0;
+        ++outlet;
+      }
+    ASSERT_GT(outlet, 0);
+    solver.evaluate();
+    const TaitEos& eos = solver.physics().eos;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (s.kind[i] != kOutletByte) continue;
+      ASSERT_EQ(s.p[i], static_cast<float>(eos.p_background)) << i;
+      ASSERT_EQ(s.rho[i], eos.rho0) << i;
+      ASSERT_EQ(s.vol[i], static_cast<float>(s.mass / eos.rho0)) << i;
+    }
+  }
+}
+
 class LastFrame : public RunObserver {
  public:
   void on_fields(const FieldFrame& f) override {

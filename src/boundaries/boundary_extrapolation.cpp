@@ -16,14 +16,8 @@ void extrapolate_with(ParticleStore& s, const PassContext& ctx, const Neighbours
   const TaitEos eos = ctx.phys.eos;
   const QuinticKernel kernel = ctx.kernel;  // local copies: see interaction_pass.hpp
   const double mass = s.mass;
-  // Outlet first: the walls below sample it (pressure reference at the outlet).
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (kind[i] != kOutletByte) continue;
-    s.p[i] = static_cast<float>(eos.p_background);
-    s.rho[i] = eos.rho0;
-    s.vol[i] = static_cast<float>(mass / eos.rho0);
-  }
+  // The outflow buffer's state (p_b, rho0) was set by the density pass before this one
+  // (density_passes.hpp, outflow_state): the walls near the outlet sample it.
   // Walls and inlet read only fluid and outlet particles (fluid_side = 1) and write only their
   // own p, rho, V and wall velocity. The reads of a neighbour's p and velocity are behind the
   // mask, not multiplied by it, so no thread ever reads a boundary value that another thread

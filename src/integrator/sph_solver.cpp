@@ -158,42 +158,48 @@ void SphSolver::evaluate() {
   density_predicted_ = false;  // it predicted for positions no step will produce
 }
 
-void SphSolver::next_displacement(double a, bool from_start) {
-  const ParticleStore& s = store_;
-  const std::size_t n = s.size();
-  next_dx_.resize(n + 1);
-  next_dy_.resize(n + 1);
-  next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
-  const bool predict = a >= 0.0;     // a < 0: no prediction wanted (evaluate())
-  const double h = 0.5 * a;          // from_start: a = dt, the first stage took dt/2
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!predict || s.kind[i] == kWallByte) {
-      next_dx_[i] = next_dy_[i] = 0.0f;
-      continue;
+namespace {
+// The displacement of the coming stage of particle i, d = base + a u - x, as advance() will
+// apply it (no shifting in the scheme that predicts): base = x before the first stage, the
+// start of the step (recovered as advance() recovers it) before the second; h = a / 2 then,
+// as the first stage took dt / 2. Walls do not move (0); a < 0: no prediction wanted (0).
+struct NextDisplacement {
+  const ParticleStore& s;
+  float* dx;
+  float* dy;
+  double a;
+  bool from_start;
+  void operator()(std::size_t i) const {
+    if (a < 0.0 || s.kind[i] == kWallByte) {
+      dx[i] = dy[i] = 0.0f;
+      return;
     }
-    // As advance() moves it (no shifting in this scheme): x_next = base + a u, the base the
-    // start of the step (stage 2, recovered as advance() recovers it) or x (stage 1).
     double bx = s.x[i], by = s.y[i];
     if (from_start) {
+      const double h = 0.5 * a;
       const midpoint::FirstStage f0 = midpoint::first_stage_velocity<true, false>(
           s, i, s.kind[i] == kFluidByte, h, midpoint::rate_or_zero);
       bx -= h * f0.tx;
       by -= h * f0.ty;
     }
-    next_dx_[i] = static_cast<float>(bx + a * s.vx[i] - s.x[i]);
-    next_dy_[i] = static_cast<float>(by + a * s.vy[i] - s.y[i]);
+    dx[i] = static_cast<float>(bx + a * s.vx[i] - s.x[i]);
+    dy[i] = static_cast<float>(by + a * s.vy[i] - s.y[i]);
   }
-}
+};
+}  // namespace
 
 template <class S, bool Ale, bool Split, bool Net>
 void SphSolver::evaluate_impl(double a_next, bool from_start) {
   PassContext ctx{kernel_, list_, phys_};
   if constexpr (S::summation_density) {
     ScopedPhase timer(timers_, Phase::density);
-    density_sum_.resize(store_.size() + 1);
-    summation_density(store_, ctx, density_predicted_ ? density_sum_.data() : nullptr);
-    next_displacement(a_next, from_start);
+    const std::size_t n = store_.size();
+    for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) v->resize(n + 1);
+    next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
+    // The displacements in the same loop as the densities: one pass over the store.
+    summation_density(
+        store_, ctx, density_predicted_ ? density_sum_.data() : nullptr,
+        NextDisplacement{store_, next_dx_.data(), next_dy_.data(), a_next, from_start});
     ctx.next_density = {density_sum_.data(), next_dx_.data(), next_dy_.data()};
   }
   if constexpr (S::momentum) {

@@ -142,9 +142,6 @@ class SphSolver {
   void evaluate_at_rest() {  // evaluate() (a prediction for the current positions, unused)
     evaluate_impl<S, Ale, Split, Net>(-1.0, 0.0);
   }
-  // The displacement of the coming stage, next_dx_ = base + a u - x (base: the start of the
-  // step, or x before the first stage), as advance() will apply it.
-  void next_displacement(double a, bool from_start);
   template <class S, bool Ale, bool Net>
   void bind(bool split);
   // The update of stage 1 or 2 of the explicit midpoint step of size dt (midpoint.hpp).

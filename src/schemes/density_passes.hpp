@@ -1,6 +1,10 @@
 // Density and pressure of the fluid particles before the force pass.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
 #include "schemes/pass_context.hpp"
 
 namespace adrsph {
@@ -12,8 +16,83 @@ namespace adrsph {
 // loop; the same numbers, bit for bit, at a fraction of the cost.
 void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted = nullptr);
 
-// p_i = Tait(rho_i) (+ p_b), eq. (2), and V_i = m / rho_i. Fluid particles only (the boundary
-// pass sets both for the others).
+// The same, and `each(i)` for every particle i (walls and buffers too) in the same loop: the
+// conventional step computes the displacement of its coming stage there (SphSolver::
+// evaluate_impl), a pass over the store and a fork of the threads fewer per stage.
+template <class EachParticle>
+void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted,
+                       EachParticle&& each);
+
+// p_i = Tait(rho_i) (+ p_b), eq. (2), and V_i = m / rho_i, of the fluid particles; the outflow
+// buffer gets its fixed state (outflow_state). The boundary pass sets walls and inflow buffer.
 void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass);
+
+// The outflow buffer's state: the background pressure p_b at the rest density rho0, the
+// reference the walls near the outlet sample (boundary_extrapolation.cpp). Both density passes
+// set it in their loop over the store, before the boundary pass reads it.
+inline void outflow_state(ParticleStore& s, std::size_t i, const TaitEos& eos, double mass) {
+  s.p[i] = static_cast<float>(eos.p_background);
+  s.rho[i] = eos.rho0;
+  s.vol[i] = static_cast<float>(mass / eos.rho0);
+}
+
+namespace detail {
+// sum_j W_ij over i's list (self excluded). Single-precision kernel sums, as in the force
+// pass: their rounding (~1e-8 of rho) is far below the summation's own error on disordered
+// particles (~1e-4..1e-3 of rho).
+template <class Neighbours>
+inline float kernel_sum(std::size_t i, const double* x, const double* y, const Neighbours& form,
+                        const NeighbourList& list, const QuinticKernel& kernel) {
+  const double xi = x[i], yi = y[i];
+  float sum = 0.0f;
+  const std::uint32_t kb = list.begin(i), ke = list.end(i);
+  std::uint32_t row_buffer[NeighbourList::kMaxRow];
+  const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
+  const std::uint32_t len = ke - kb;
+#pragma omp simd reduction(+ : sum)
+  for (std::uint32_t k = 0; k < len; ++k) {
+    const std::uint32_t j = nb[k];
+    const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
+    sum += kernel.value<float>(std::sqrt(dx * dx + dy * dy));
+  }
+  return sum;
+}
+
+template <class Neighbours, class EachParticle>
+void summation_density_with(ParticleStore& s, const PassContext& ctx, const float* predicted,
+                            const Neighbours form, EachParticle& each) {
+  const std::size_t n = s.size();
+  const double* x = s.x.data();
+  const double* y = s.y.data();
+  const double self = ctx.kernel.value(0.0);
+  const double mass = s.mass;
+  // Local copies: with references g++ reloaded them in the loop (2x slower, measured).
+  const TaitEos eos = ctx.phys.eos;
+  const QuinticKernel kernel = ctx.kernel;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    each(i);
+    const std::uint8_t k = s.kind[i];
+    if (k == kOutletByte) outflow_state(s, i, eos, mass);
+    if (k != kFluidByte) continue;
+    // A prediction is missing (NaN) for a particle that was in the inflow buffer then.
+    const float sum = predicted && !std::isnan(predicted[i])
+                          ? predicted[i]
+                          : kernel_sum(i, x, y, form, ctx.neighbours, kernel);
+    // rho_i = m (W(0) + sum), then p_i (eq. 2) and V_i.
+    const double rhoi = mass * (self + static_cast<double>(sum));
+    s.rho[i] = rhoi;
+    s.p[i] = static_cast<float>(eos.pressure(rhoi));
+    s.vol[i] = static_cast<float>(mass / rhoi);
+  }
+}
+}  // namespace detail
+
+template <class EachParticle>
+void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted,
+                       EachParticle&& each) {
+  ctx.neighbours.with_indices(
+      [&](auto form) { detail::summation_density_with(s, ctx, predicted, form, each); });
+}
 
 }  // namespace adrsph
