@@ -15,8 +15,10 @@ void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass) {
     const std::uint8_t k = s.kind[i];
     if (k == kOutletByte) outflow_state(s, i, eos, mass);
     if (k != kFluidByte) continue;
-    s.p[i] = static_cast<float>(eos.pressure(s.rho[i]));
-    s.vol[i] = static_cast<float>(mass / s.rho[i]);
+    const double rhoi = s.rho[i];
+    s.p[i] = static_cast<float>(eos.pressure(rhoi));
+    s.vol[i] = static_cast<float>(mass / rhoi);
+    s.rho_excess[i] = static_cast<float>(rhoi - eos.rho0);
   }
 }
 

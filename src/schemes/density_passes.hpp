@@ -23,7 +23,8 @@ template <class EachParticle>
 void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted,
                        EachParticle&& each);
 
-// p_i = Tait(rho_i) (+ p_b), eq. (2), and V_i = m / rho_i, of the fluid particles; the outflow
+// p_i = Tait(rho_i) (+ p_b), eq. (2), V_i = m / rho_i and rho_i - rho0 (ParticleStore::
+// rho_excess), of the fluid particles; the outflow
 // buffer gets its fixed state (outflow_state). The boundary pass sets walls and inflow buffer.
 void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass);
 
@@ -34,6 +35,7 @@ inline void outflow_state(ParticleStore& s, std::size_t i, const TaitEos& eos, d
   s.p[i] = static_cast<float>(eos.p_background);
   s.rho[i] = eos.rho0;
   s.vol[i] = static_cast<float>(mass / eos.rho0);
+  s.rho_excess[i] = 0.0f;
 }
 
 namespace detail {
@@ -84,6 +86,7 @@ void summation_density_with(ParticleStore& s, const PassContext& ctx, const floa
     s.rho[i] = rhoi;
     s.p[i] = static_cast<float>(eos.pressure(rhoi));
     s.vol[i] = static_cast<float>(mass / rhoi);
+    s.rho_excess[i] = static_cast<float>(rhoi - eos.rho0);
   }
 }
 }  // namespace detail

@@ -26,9 +26,11 @@ namespace adrsph {
 // Pair arithmetic in single precision (`real`): the kernel, its gradient and every pair
 // term run 8 lanes wide instead of 4 (perf/README.md, "float pair arithmetic"). Whatever
 // would lose digits in float is taken in double first and then rounded: the separation
-// r_i - r_j (positions are ~1e5 dx from the origin), u_i - u_j, rho_i - rho_j and C_i - C_j
-// (neighbour differences are ~1e-4 of the values). The sums of ~35 pair terms are float
-// too; their rounding (~1e-7 relative) is far below the scheme's own pair-sum errors.
+// r_i - r_j (positions are ~1e5 dx from the origin), u_i - u_j and C_i - C_j (neighbour
+// differences are ~1e-4 of the values). Densities enter as rho - rho0 (ParticleStore::
+// rho_excess, ~1e-2 rho0 at most), whose float difference keeps what the double one would. The sums
+// of ~35 pair terms are float too; their rounding (~1e-7 relative) is far below the scheme's own
+// pair-sum errors.
 //
 // Neighbours: NeighbourList::Offsets or ::Indices (interaction_pass below picks the list's).
 template <class Scheme, bool Ale, bool Diffuse, bool Network, class Neighbours>
@@ -42,6 +44,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
   const double* vx = s.vx.data();
   const double* vy = s.vy.data();
   const double* rho = s.rho.data();
+  const float* rho_excess = s.rho_excess.data();  // rho - rho0: a float gather, not a double one
   const float* p = s.p.data();
   const float* vol = s.vol.data();
   const double* c = s.c.data();
@@ -52,6 +55,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
   const QuinticKernel kernel = ctx.kernel;
   const PhysicsConstants& ph = ctx.phys;
   const real eta2 = static_cast<real>(ph.eta2), mass = static_cast<real>(s.mass);
+  const real two_rho0 = static_cast<real>(2.0 * ph.eos.rho0);
   const real four_nu = static_cast<real>(ph.four_nu), dh = static_cast<real>(ph.delta_h_c0_2);
   const real diffusivity = static_cast<real>(ph.diffusivity);
   [[maybe_unused]] const real body_force = static_cast<real>(ph.body_force_x);
@@ -81,6 +85,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
     const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i], rhoi_d = rho[i], ci_d = c[i];
     const real rhoi = static_cast<real>(rhoi_d), pi = p[i], voli = vol[i];
     const real inv_rhoi = real(1) / rhoi;
+    const real excess_i = Scheme::momentum ? rho_excess[i] : real(0);
     real ax = 0, ay = 0, drho = 0, gx = 0, gy = 0;  // flow
     real cdiff = 0, cdil = 0, cgx = 0, cgy = 0;     // species
     real wsum = 0;                                  // density at the next positions
@@ -101,7 +106,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
       // One division gives 1/r, 1/(r^2 + eta^2) and 1/(rho_i + rho_j): divisions and the
       // square root are the slowest operations of the pair (perf/README.md, "Build flags").
       const real reg = r2 + eta2;
-      const real rho_sum = Scheme::momentum ? rhoi + static_cast<real>(rho[j]) : real(1);
+      const real rho_sum = Scheme::momentum ? two_rho0 + (excess_i + rho_excess[j]) : real(1);
       const real inv = real(1) / (r * reg * rho_sum);
       const real dwdr = kernel.derivative<real>(r);
       const real f = dwdr * inv * reg * rho_sum;  // (dW/dr) / r
@@ -118,7 +123,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
       }
       if constexpr (Scheme::dilatation) cdil += species_dilatation_pair(volj, u_dot_gradw);
       if constexpr (Scheme::continuity) {
-        const real rho_ij = static_cast<real>(rhoi_d - rho[j]);
+        const real rho_ij = excess_i - rho_excess[j];
         drho += continuity_pair(rhoi, volj, u_dot_gradw) +
                 density_diffusion_pair(dh, volj, rho_ij, lap_weight);
       }
