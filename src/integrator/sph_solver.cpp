@@ -122,7 +122,7 @@ void SphSolver::rebuild() {
     const std::size_t n = store_.size();
     if (order.capacity() < n) {  // more particles than at the last build: headroom as the store
       std::vector<std::uint32_t>().swap(order);
-      order.reserve(n + n / 32 + 64);
+      order.reserve(ParticleStore::grown_capacity(n));
     }
     // Removed particles are outside the grid (x = NaN), so the counting sort drops them.
     grid_.sort(std::span(store_.x).first(n), std::span(store_.y).first(n), order, outside);

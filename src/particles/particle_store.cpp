@@ -59,7 +59,7 @@ std::size_t ParticleStore::bytes() const {
 }
 
 void ParticleStore::resize(std::size_t n) {
-  if (n + 1 > x.capacity()) reserve(n + n / 32 + 64);
+  if (n + 1 > x.capacity()) reserve(grown_capacity(n));
   n_ = n;
   for_each_field(*this, [n](auto& a, Role, const char*) { a.resize(n + 1); });
   reset_padding();

@@ -27,8 +27,8 @@ struct ParticleStore {
   std::vector<float> p;    // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
   std::vector<float> vol;  // V = m / rho [mm^2]
   // rho - rho0 [kg/m^3], set with p and V (Needs::momentum): what the force pass reads of a
-  // neighbour's density. rho_j itself would be a gather of doubles, ~7% of the pass
-  // (perf/README.md, 3.17); the excess is ~1e-2 rho0 at most, so its float rounding is
+  // neighbour's density, a float instead of a double per pair (a fine run 2% faster,
+  // perf/README.md, 3.17). The excess is ~1e-2 rho0 at most, so its float rounding is
   // ~1e-9 rho0, far below the neighbour differences (~1e-4 rho0) the pass takes of it.
   std::vector<float> rho_excess;
   // 1 where the particle exchanges species by diffusion: fluid and the inflow buffer (the
@@ -78,6 +78,9 @@ struct ParticleStore {
   // most of the memory of a run. (Capacity never written is not resident: arrays this large
   // are mapped pages of their own.)
   void resize(std::size_t n);
+  // The capacity a growth to n particles takes (~3% headroom); arrays sized with the store
+  // (the re-sort's order) grow by the same rule.
+  static constexpr std::size_t grown_capacity(std::size_t n) { return n + n / 32 + 64; }
   // Make room for n particles (plus the padding one) in every array, exactly.
   void reserve(std::size_t n);
   std::size_t capacity() const { return x.capacity() == 0 ? 0 : x.capacity() - 1; }
