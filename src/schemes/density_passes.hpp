@@ -1,4 +1,5 @@
-// Density and pressure of the fluid particles before the force pass.
+// Density and pressure of the fluid particles (and the outflow buffer's fixed state) before
+// the boundary and force passes.
 #pragma once
 
 #include <cmath>
@@ -10,10 +11,12 @@
 namespace adrsph {
 
 // Conventional scheme: rho_i = m sum_j W_ij (self included), eq. (3) with W for the printed
-// grad W (docs/benchmark.md, section 2), then p_i and V_i as fluid_pressure() does. Fluid
-// particles only. `predicted`: the sums the previous force pass took at these very positions
-// (pass_context.hpp, DensityPrediction), used where present (not NaN) instead of a neighbour
-// loop; the same numbers, bit for bit, at a fraction of the cost.
+// grad W (docs/benchmark.md, section 2), then p_i, V_i and rho_i - rho0 as fluid_pressure()
+// does, for the fluid particles; the outflow buffer gets its fixed state.
+// `predicted`: the sums the previous force pass took at these very positions (pass_context.hpp,
+// DensityPrediction), used where present (not NaN) instead of a neighbour loop: the same sums
+// to float rounding (Flow.ConventionalPredictedDensityIsTheSummationDensity), at a fraction of
+// the cost.
 void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted = nullptr);
 
 // The same, and `each(i)` for every particle i (walls and buffers too) in the same loop: the
@@ -24,8 +27,8 @@ void summation_density(ParticleStore& s, const PassContext& ctx, const float* pr
                        EachParticle&& each);
 
 // p_i = Tait(rho_i) (+ p_b), eq. (2), V_i = m / rho_i and rho_i - rho0 (ParticleStore::
-// rho_excess), of the fluid particles; the outflow
-// buffer gets its fixed state (outflow_state). The boundary pass sets walls and inflow buffer.
+// rho_excess), of the fluid particles; the outflow buffer gets its fixed state
+// (outflow_state). The boundary pass sets walls and inflow buffer.
 void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass);
 
 // The outflow buffer's state: the background pressure p_b at the rest density rho0, the
