@@ -15,10 +15,7 @@ void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass) {
     const std::uint8_t k = s.kind[i];
     if (k == kOutletByte) outflow_state(s, i, eos, mass);
     if (k != kFluidByte) continue;
-    const double rhoi = s.rho[i];
-    s.p[i] = static_cast<float>(eos.pressure(rhoi));
-    s.vol[i] = static_cast<float>(mass / rhoi);
-    s.rho_excess[i] = static_cast<float>(rhoi - eos.rho0);
+    set_density_state(s, i, s.rho[i], eos, mass);
   }
 }
 

@@ -31,14 +31,21 @@ void summation_density(ParticleStore& s, const PassContext& ctx, const float* pr
 // (outflow_state). The boundary pass sets walls and inflow buffer.
 void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass);
 
-// The outflow buffer's state: the background pressure p_b at the rest density rho0, the
-// reference the walls near the outlet sample (boundary_extrapolation.cpp). Both density passes
-// set it in their loop over the store, before the boundary pass reads it.
+// rho_i and what follows from it: p_i = Tait(rho_i) (+ p_b), eq. (2), V_i = m / rho_i and
+// rho_i - rho0 (ParticleStore::rho_excess). The one place a density passes on to them.
+inline void set_density_state(ParticleStore& s, std::size_t i, double rho, const TaitEos& eos,
+                              double mass) {
+  s.rho[i] = rho;
+  s.p[i] = static_cast<float>(eos.pressure(rho));
+  s.vol[i] = static_cast<float>(mass / rho);
+  s.rho_excess[i] = static_cast<float>(rho - eos.rho0);
+}
+
+// The outflow buffer's state: the rest density rho0, so p = p_b exactly, the reference the
+// walls near the outlet sample (boundary_extrapolation.cpp). Both density passes set it in
+// their loop over the store, before the boundary pass reads it.
 inline void outflow_state(ParticleStore& s, std::size_t i, const TaitEos& eos, double mass) {
-  s.p[i] = static_cast<float>(eos.p_background);
-  s.rho[i] = eos.rho0;
-  s.vol[i] = static_cast<float>(mass / eos.rho0);
-  s.rho_excess[i] = 0.0f;
+  set_density_state(s, i, eos.rho0, eos, mass);
 }
 
 namespace detail {
@@ -84,12 +91,7 @@ void summation_density_with(ParticleStore& s, const PassContext& ctx, const floa
     const float sum = predicted && !std::isnan(predicted[i])
                           ? predicted[i]
                           : kernel_sum(i, x, y, form, ctx.neighbours, kernel);
-    // rho_i = m (W(0) + sum), then p_i (eq. 2) and V_i.
-    const double rhoi = mass * (self + static_cast<double>(sum));
-    s.rho[i] = rhoi;
-    s.p[i] = static_cast<float>(eos.pressure(rhoi));
-    s.vol[i] = static_cast<float>(mass / rhoi);
-    s.rho_excess[i] = static_cast<float>(rhoi - eos.rho0);
+    set_density_state(s, i, mass * (self + static_cast<double>(sum)), eos, mass);  // eq. (3)
   }
 }
 }  // namespace detail
