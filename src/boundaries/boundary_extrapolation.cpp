@@ -30,9 +30,9 @@ void extrapolate_with(ParticleStore& s, const PassContext& ctx, const Neighbours
     // Single precision, like the other neighbour passes (shepard averages of float p).
     float sw = 0.0f, sp = 0.0f, su = 0.0f, sv = 0.0f;
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    std::uint32_t row_buffer[NeighbourList::kRowBuffer];
     const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    const std::uint32_t len = ke - kb;
+    const std::uint32_t len = NeighbourList::padded(ke - kb);  // whole vectors
 #pragma omp simd reduction(+ : sw, sp, su, sv)
     for (std::uint32_t k = 0; k < len; ++k) {
       const std::uint32_t j = nb[k];

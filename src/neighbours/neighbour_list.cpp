@@ -10,13 +10,15 @@ constexpr std::integral_constant<int, 1> kOneRing{};  // the 3x3 cells around a 
 
 // Growing past the capacity adds ~3% headroom, not std::vector's doubling (the lists are the
 // second largest block of a run, after the particle arrays); the other form is released.
+// `total` entries and the slack a 16-bit row's expansion reads past the last row.
 template <class T, class U>
 void size_entries(std::vector<T>& used, std::vector<U>& other, std::size_t total) {
-  if (total > used.capacity()) {  // the old entries are rewritten: freed first, not copied
+  const std::size_t size = total + NeighbourList::kSlack;
+  if (size > used.capacity()) {  // the old entries are rewritten: freed first, not copied
     std::vector<T>().swap(used);
-    used.reserve(total + total / 32);
+    used.reserve(size + total / 32);
   }
-  used.resize(total);
+  used.resize(size);
   std::vector<U>().swap(other);
 }
 
@@ -28,12 +30,12 @@ inline std::uint32_t in_row(std::size_t i, std::uint32_t j, double d2, double rc
 }
 
 // Fill row i of the CSR with entry(i, j), j its neighbours in the order the cells give them,
-// then pad it to its end with `pad`. Every candidate is stored and the row end advances by
-// in_row, with no branch on it (a branch ran the build 2.2x slower on a run's particles than
-// on the lattice, BM_NeighbourListDisordered). The row is assembled in a buffer of its thread and
-// copied (a store past the row's end would land in the next row, which may be another
-// thread's). (A function, not a generic lambda: clang does not accept an OpenMP loop in a
-// generic lambda that reads the enclosing function's locals.)
+// then pad it to its end with `pad` (rows of the 16-bit form end with their last entry). Every
+// candidate is stored and the row end advances by in_row, with no branch on it (a branch ran the
+// build 2.2x slower on a run's particles than on the lattice, BM_NeighbourListDisordered). The row
+// is assembled in a buffer of its thread and copied (a store past the row's end would land in the
+// next row, which may be another thread's). (A function, not a generic lambda: clang does not
+// accept an OpenMP loop in a generic lambda that reads the enclosing function's locals.)
 template <class T, class Entry>
 void fill_rows(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
                double rc2, const std::vector<std::uint32_t>& offset, std::uint32_t longest,
@@ -68,7 +70,7 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
   offset_.assign(n + 1, 0);
   std::size_t real_total = 0;
   std::int64_t far = 0;       // the largest |j - i| of a listed pair
-  std::uint32_t longest = 0;  // the longest padded row
+  std::uint32_t longest = 0;  // the longest row
 #pragma omp parallel for schedule(static) reduction(+ : real_total) reduction(max : far, longest)
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t cnt = 0, lo = static_cast<std::uint32_t>(i), hi = lo;
@@ -83,14 +85,16 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
       lo = std::min(lo, m);
       hi = std::max(hi, m);
     });
-    offset_[i + 1] = (cnt + kPad - 1) / kPad * kPad;  // padded count, summed below
-    longest = std::max(longest, offset_[i + 1]);
+    offset_[i + 1] = cnt;  // summed below
+    longest = std::max(longest, cnt);
     real_total += cnt;
     const auto ii = static_cast<std::int64_t>(i);
     far = std::max({far, ii - static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi) - ii});
   }
+  wide_ = width == Width::wide || far > kMaxOffset || padded(longest) > kMaxRow;
+  if (wide_)  // stored padded (the header)
+    for (std::size_t i = 0; i < n; ++i) offset_[i + 1] = padded(offset_[i + 1]);
   for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
-  wide_ = width == Width::wide || far > kMaxOffset || longest > kMaxRow;
   padding_ = padding_index;
   if (wide_) {
     size_entries(index_, offset16_, offset_[n]);
@@ -105,7 +109,7 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
           return static_cast<std::int16_t>(static_cast<std::int64_t>(j) -
                                            static_cast<std::int64_t>(i));
         },
-        kPaddingOffset);
+        std::int16_t{0});  // (no padding stored)
   }
   mean_ = n ? static_cast<double>(real_total) / static_cast<double>(n) : 0.0;
 }

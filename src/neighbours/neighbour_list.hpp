@@ -1,7 +1,7 @@
 // Cached neighbour lists in CSR form, built from the cell grid with a cut-off slightly above
 // the kernel support (3h + skin) and reused until particles may have moved skin/2.
-// Each particle's list is padded to a multiple of kPad with the padding particle, so the inner
-// loops run whole SIMD vectors without a scalar tail.
+// A pass's pair loop runs over a row padded to a multiple of kPad with the padding particle,
+// so that it runs whole SIMD vectors without a scalar tail.
 //
 // Entries are 16-bit offsets j - i where every pair allows it, 32-bit indices otherwise. The
 // particles are sorted along a Morton curve, so a neighbour is close to i in the arrays too:
@@ -12,8 +12,14 @@
 // each build (and one with a row longer than kMaxRow entries). The passes see either form
 // through one call, `with_indices`, taken once per pass outside its loops: the loop body is
 // compiled for each form and carries no branch on it.
+//
+// The 16-bit form stores the real entries only and pads a row when it expands it into the
+// indices a pair loop reads (the ~3.5 entries of padding per row are not stored: 7 B/particle).
+// The 32-bit form stores its rows padded and the pair loop reads them in place (a row may be
+// longer than the expansion buffer).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -26,8 +32,6 @@ namespace adrsph {
 class NeighbourList {
  public:
   static constexpr std::uint32_t kPad = 8;
-  // The 16-bit entry that stands for the padding particle (no real offset takes it).
-  static constexpr std::int16_t kPaddingOffset = std::numeric_limits<std::int16_t>::min();
   static constexpr std::int32_t kMaxOffset = std::numeric_limits<std::int16_t>::max();
 
   enum class Width { automatic, wide };  // wide: 32-bit indices whatever the offsets
@@ -35,21 +39,33 @@ class NeighbourList {
   // The most entries a particle may have in the 16-bit form (a row is expanded into a buffer
   // of this size on the stack); a scene with a longer row gets the 32-bit form.
   static constexpr std::uint32_t kMaxRow = 512;
+  // The size of the buffer a row is expanded into: the padding is written as one vector of
+  // kPad entries from the row's end (a test of k < len in the expansion loop makes g++ -O3
+  // split it in two loops with scalar tails: 7% more instructions in the force pass, perf
+  // guard).
+  static constexpr std::uint32_t kRowBuffer = kMaxRow + kPad;
+
+  // The entries a pair loop runs over for a row of `count` real ones: whole vectors.
+  static constexpr std::uint32_t padded(std::uint32_t count) {
+    return (count + kPad - 1) / kPad * kPad;
+  }
 
   // The two forms. A pass takes, for each particle i, row(i, kb, ke, buffer): the indices of
-  // its entries [kb, ke) as a plain array, then runs its pair loop over that array. The 32-bit
-  // form returns its own entries; the 16-bit form expands i + offset into the buffer (one
-  // short vector loop). The pair loops are thus the same code for both forms: g++ 12 does not
-  // vectorise a pair loop that reads 16-bit entries itself (it picks 16 lanes from them, and
-  // has no gather of 16 doubles), which ran 2.2x the instructions (perf guard).
-  // 16-bit form: i + offset, or the padding particle.
+  // its entries [kb, ke) followed by the padding particle up to padded(ke - kb) entries, then
+  // runs its pair loop over that array. The pair loops are thus the same code for both forms:
+  // g++ 12 does not vectorise a pair loop that reads 16-bit entries itself (it picks 16 lanes
+  // from them, and has no gather of 16 doubles), which ran 2.2x the instructions (perf guard).
+  // 16-bit form: i + offset expanded into `buffer` (kRowBuffer entries, one short vector loop),
+  // then the padding. The loop reads up to kPad - 1 entries past the row's end (the next row's,
+  // or the kSlack entries the array holds past the last row), which the padding overwrites.
   struct Offsets {
     const std::int16_t* entries;
     std::uint32_t padding;
     const std::uint32_t* row(std::size_t i, std::uint32_t kb, std::uint32_t ke,
                              std::uint32_t* buffer) const;  // (below the class)
   };
-  // 32-bit form: the indices themselves.
+  static constexpr std::uint32_t kSlack = kPad;
+  // 32-bit form: the indices themselves, rows stored padded (ke - kb a multiple of kPad).
   struct Indices {
     const std::uint32_t* entries;
     const std::uint32_t* row(std::size_t, std::uint32_t kb, std::uint32_t, std::uint32_t*) const {
@@ -61,8 +77,8 @@ class NeighbourList {
   void build(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
              double cutoff, std::uint32_t padding_index, Width width = Width::automatic);
 
-  // pass(form) with form an Offsets or an Indices of this list; entries of particle i are
-  // [begin(i), end(i)).
+  // pass(form) with form an Offsets or an Indices of this list; the entries of particle i are
+  // [begin(i), end(i)): its real ones (16-bit form), padded to a multiple of kPad (32-bit form).
   template <class Pass>
   decltype(auto) with_indices(Pass&& pass) const {
     return wide_ ? pass(Indices{index_.data()}) : pass(Offsets{offset16_.data(), padding_});
@@ -89,7 +105,7 @@ class NeighbourList {
   std::vector<std::uint32_t> offset_;   // CSR row starts, size n + 1
   std::vector<std::int16_t> offset16_;  // entries, 16-bit form
   std::vector<std::uint32_t> index_;    // entries, 32-bit form (empty while 16-bit serves)
-  std::uint32_t padding_ = 0;
+  std::uint32_t padding_ = 0;           // index of the padding particle
   bool wide_ = false;
   double mean_ = 0.0;
 };
@@ -100,13 +116,12 @@ inline const std::uint32_t* NeighbourList::Offsets::row(std::size_t i, std::uint
   // Locals: a store to buffer may alias the member `padding` (both uint32), and g++ then
   // reloads it in the loop and does not vectorise it.
   const std::int16_t* e = entries + kb;
-  const std::uint32_t pad = padding, len = ke - kb;
+  const std::uint32_t pad = padding, len = ke - kb, whole = padded(len);
   const auto base = static_cast<std::int32_t>(i);
 #pragma omp simd
-  for (std::uint32_t k = 0; k < len; ++k) {
-    const std::int32_t d = e[k];
-    buffer[k] = d == kPaddingOffset ? pad : static_cast<std::uint32_t>(base + d);
-  }
+  for (std::uint32_t k = 0; k < whole; ++k)  // past the row: the next row's entries or the slack
+    buffer[k] = static_cast<std::uint32_t>(base + std::int32_t{e[k]});
+  std::fill_n(buffer + len, kPad, pad);  // one vector store over what was read past the row
   return buffer;
 }
 

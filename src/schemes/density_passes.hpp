@@ -58,9 +58,9 @@ inline float kernel_sum(std::size_t i, const double* x, const double* y, const N
   const double xi = x[i], yi = y[i];
   float sum = 0.0f;
   const std::uint32_t kb = list.begin(i), ke = list.end(i);
-  std::uint32_t row_buffer[NeighbourList::kMaxRow];
+  std::uint32_t row_buffer[NeighbourList::kRowBuffer];
   const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-  const std::uint32_t len = ke - kb;
+  const std::uint32_t len = NeighbourList::padded(ke - kb);  // whole vectors
 #pragma omp simd reduction(+ : sum)
   for (std::uint32_t k = 0; k < len; ++k) {
     const std::uint32_t j = nb[k];

@@ -94,9 +94,9 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
                  c3i = Network ? c3[i] : 0.0;
     const real ddxi = kPredict ? ddx[i] : real(0), ddyi = kPredict ? ddy[i] : real(0);
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    std::uint32_t row_buffer[NeighbourList::kRowBuffer];
     const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    const std::uint32_t len = ke - kb;
+    const std::uint32_t len = NeighbourList::padded(ke - kb);  // whole vectors
 #pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy, wsum, cd1, cd2, cd3)
     for (std::uint32_t k = 0; k < len; ++k) {
       const std::uint32_t j = nb[k];

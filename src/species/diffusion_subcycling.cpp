@@ -26,9 +26,9 @@ void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const 
     if (s.kind[i] != kFluidByte) continue;
     const double xi = x[i], yi = y[i], voli = vol[i];
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    std::uint32_t row_buffer[NeighbourList::kRowBuffer];
     const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    float* wi = w + kb;
+    float* wi = w + kb;  // a weight per stored entry (neighbour_list.hpp: which are stored)
     const std::uint32_t len = ke - kb;
 #pragma omp simd
     for (std::uint32_t k = 0; k < len; ++k) {
@@ -58,7 +58,7 @@ double rates_with(const ParticleStore& s, const PassContext& ctx, const Neighbou
     const double ci = cc[i];
     double sum = 0.0;
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    std::uint32_t row_buffer[NeighbourList::kRowBuffer];
     const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
     const float* wi = w + kb;
     const std::uint32_t len = ke - kb;

@@ -16,7 +16,7 @@ double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const 
     if (s.kind[i] != kFluidByte) continue;
     double rate = 0.0;
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    std::uint32_t row_buffer[NeighbourList::kRowBuffer];
     const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
     for (std::uint32_t k = 0; k < ke - kb; ++k) {
       const std::uint32_t j = nb[k];

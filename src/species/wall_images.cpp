@@ -20,7 +20,7 @@ void add_with(ParticleStore& s, const PassContext& ctx, const Neighbours form) {
     const double xi = s.x[i], yi = s.y[i], voli = s.vol[i];
     double sum = 0.0, sum_more[ParticleStore::kMaxMore] = {};
     const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
-    std::uint32_t row_buffer[NeighbourList::kMaxRow];
+    std::uint32_t row_buffer[NeighbourList::kRowBuffer];
     const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
     for (std::uint32_t k = 0; k < ke - kb; ++k) {
       const std::uint32_t j = nb[k];
