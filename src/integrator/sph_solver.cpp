@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -159,37 +160,29 @@ void SphSolver::evaluate() {
 }
 
 namespace {
-// The displacement of the coming stage of particle i, d = base + a u - x, as advance() will
-// apply it (no shifting in the scheme that predicts): base = x before the first stage, the
-// start of the step (recovered as advance() recovers it) before the second; h = a / 2 then,
-// as the first stage took dt / 2. Walls do not move (0); a < 0: no prediction wanted (0).
+// The displacement of the first stage of particle i, d = a u (a = dt / 2), as advance<1>()
+// will apply it (no shifting in the scheme that predicts). Walls do not move (0); a < 0: no
+// prediction wanted (0); a NaN: the second stage's, already written by advance<1>().
+constexpr double kWrittenByFirstStage = std::numeric_limits<double>::quiet_NaN();
 struct NextDisplacement {
   const ParticleStore& s;
   float* dx;
   float* dy;
   double a;
-  bool from_start;
   void operator()(std::size_t i) const {
+    if (std::isnan(a)) return;
     if (a < 0.0 || s.kind[i] == kWallByte) {
       dx[i] = dy[i] = 0.0f;
       return;
     }
-    double bx = s.x[i], by = s.y[i];
-    if (from_start) {
-      const double h = 0.5 * a;
-      const midpoint::FirstStage f0 = midpoint::first_stage_velocity<true, false>(
-          s, i, s.kind[i] == kFluidByte, h, midpoint::rate_or_zero);
-      bx -= h * f0.tx;
-      by -= h * f0.ty;
-    }
-    dx[i] = static_cast<float>(bx + a * s.vx[i] - s.x[i]);
-    dy[i] = static_cast<float>(by + a * s.vy[i] - s.y[i]);
+    dx[i] = static_cast<float>(a * s.vx[i]);
+    dy[i] = static_cast<float>(a * s.vy[i]);
   }
 };
 }  // namespace
 
 template <class S, bool Ale, bool Split, bool Net>
-void SphSolver::evaluate_impl(double a_next, bool from_start) {
+void SphSolver::evaluate_impl(double a_next) {
   PassContext ctx{kernel_, list_, phys_};
   if constexpr (S::summation_density) {
     ScopedPhase timer(timers_, Phase::density);
@@ -197,9 +190,8 @@ void SphSolver::evaluate_impl(double a_next, bool from_start) {
     for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) v->resize(n + 1);
     next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
     // The displacements in the same loop as the densities: one pass over the store.
-    summation_density(
-        store_, ctx, density_predicted_ ? density_sum_.data() : nullptr,
-        NextDisplacement{store_, next_dx_.data(), next_dy_.data(), a_next, from_start});
+    summation_density(store_, ctx, density_predicted_ ? density_sum_.data() : nullptr,
+                      NextDisplacement{store_, next_dx_.data(), next_dy_.data(), a_next});
     ctx.next_density = {density_sum_.data(), next_dx_.data(), next_dy_.data()};
   }
   if constexpr (S::momentum) {
@@ -287,6 +279,13 @@ void SphSolver::advance(double dt) {
           ce = ce0 + a * take(s.dc_more[e][i]);
         }
     }
+    // The summation-density scheme predicts the density at the end of the step: d = x0 +
+    // dt u_h - x_h, as advance<2>() will apply it (pass_context.hpp), written here where x0 is
+    // at hand rather than recovered in the next density pass. Walls keep their 0 of stage 1.
+    if constexpr (S::summation_density && Stage == 1) {
+      next_dx_[i] = static_cast<float>(x0 + dt * s.vx[i] - s.x[i]);
+      next_dy_[i] = static_cast<float>(y0 + dt * s.vy[i] - s.y[i]);
+    }
     // Counted once, at stage 2, which reads the rates of both stages.
     if constexpr (Stage == 2) bad += nonfinite > 0 ? 1 : 0;
   }
@@ -308,11 +307,11 @@ bool SphSolver::step_impl(double dt) {
   // Transport: explicit midpoint. Stage 1 predicts the density at x + dt/2 u (x0 = x then),
   // stage 2 at x0 + dt u*.
   bad_rates_ = 0;
-  evaluate_impl<S, Ale, Split, Net>(0.5 * dt, false);
+  evaluate_impl<S, Ale, Split, Net>(0.5 * dt);
   density_predicted_ = S::summation_density && predict_density_;
   advance<S, 1, Net>(dt);
   store_.keep_first_stage_rates();
-  evaluate_impl<S, Ale, Split, Net>(dt, true);
+  evaluate_impl<S, Ale, Split, Net>(kWrittenByFirstStage);
   density_predicted_ = S::summation_density && predict_density_;
   // With the buffers, per species, for the ledger once the step is kept.
   std::array<double, Case::kMaxSpecies> exchange{};

@@ -134,13 +134,14 @@ class SphSolver {
   // Net: a network of several species (interaction_pass.hpp, Network).
   template <class S, bool Ale, bool Split, bool Net>
   bool step_impl(double dt);
-  // a_next: the coming stage's step (prediction at x0 + a_next u, x0 the start of the step;
-  // before the first stage, from_start = false: at x + a_next u); a_next < 0: no prediction.
+  // The displacement the summation-density scheme predicts the density for (pass_context.hpp):
+  // a_next >= 0: the first stage's, a_next u (a_next = dt/2); a_next < 0: none (0); NaN: the
+  // second stage's, written by advance<S, 1> (which has the start of the step at hand).
   template <class S, bool Ale, bool Split, bool Net>
-  void evaluate_impl(double a_next, bool from_start);
+  void evaluate_impl(double a_next);
   template <class S, bool Ale, bool Split, bool Net>
   void evaluate_at_rest() {  // evaluate() (a prediction for the current positions, unused)
-    evaluate_impl<S, Ale, Split, Net>(-1.0, 0.0);
+    evaluate_impl<S, Ale, Split, Net>(-1.0);
   }
   template <class S, bool Ale, bool Net>
   void bind(bool split);
