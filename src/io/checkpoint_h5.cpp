@@ -282,9 +282,7 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointFile& c
     write_run(f.get(), state, file);
     h5::check(H5Fflush(f.get(), H5F_SCOPE_GLOBAL), file, "flush");
   }
-  // HDF5's free lists emptied, as after a field frame (fields_h5.cpp): what the write used is
-  // not held until the next one.
-  H5garbage_collect();
+  h5::release_write_buffers();  // as after a field frame (fields_h5.cpp)
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec)

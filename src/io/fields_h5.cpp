@@ -74,7 +74,7 @@ void FieldsWriter::write(const FieldFrame& f) {
                                "open the file to add a frame");
     write_frame(fid.get(), f);
   }
-  H5garbage_collect();
+  h5::release_write_buffers();
   frames_.push_back({f.t, f.step, n});
 }
 

@@ -2,6 +2,9 @@
 #pragma once
 
 #include <hdf5.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <stdexcept>
 #include <string>
@@ -52,6 +55,16 @@ inline void check(herr_t status, const std::string& file, const std::string& wha
 // HDF5 prints its error stack to stderr by default; we report errors ourselves.
 inline void silence_errors() {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
+
+// After a write: HDF5's free lists emptied, then the heap pages they held given back to the
+// system (glibc keeps freed pages below the top of the heap resident until trimmed), so that
+// what a write used is not held while the run steps on to the next one.
+inline void release_write_buffers() {
+  H5garbage_collect();
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
 }
 
 }  // namespace adrsph::h5
