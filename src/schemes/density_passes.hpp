@@ -20,8 +20,9 @@ namespace adrsph {
 void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted = nullptr);
 
 // The same, and `each(i)` for every particle i (walls and buffers too) in the same loop: the
-// conventional step computes the displacement of its coming stage there (SphSolver::
-// evaluate_impl), a pass over the store and a fork of the threads fewer per stage.
+// conventional step computes the displacement of its first stage there (SphSolver::
+// evaluate_impl; the second stage's is written by the first stage's update): neither takes a
+// pass over the store of its own.
 template <class EachParticle>
 void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted,
                        EachParticle&& each);
