@@ -107,8 +107,8 @@ TEST(FusedPass, FloatPairSumsMatchDoubleOnAJitteredLattice) {
 
 // The passes read a row through NeighbourList::with_indices: 16-bit offsets expanded and padded
 // per row, or 32-bit indices stored padded. Both forms list the same entries in the same
-// order, so every pass must give the same values bit for bit (a row expanded past its end, or
-// padding missing from one form, would not).
+// order, so every pass must give the same values bit for bit, the sub-cycler to rounding (a
+// row expanded past its end, or padding missing from one form, would not).
 TEST(FusedPass, BothFormsOfTheListGiveTheSameValues) {
   Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 5.0);
   SphSolver solver(c);
@@ -176,8 +176,18 @@ TEST(FusedPass, BothFormsOfTheListGiveTheSameValues) {
   EXPECT_EQ(a.p_wall, b.p_wall);
   EXPECT_EQ(a.rho_summed, b.rho_summed);
   EXPECT_EQ(a.exchange, b.exchange);
-  EXPECT_EQ(a.c_subcycled, b.c_subcycled);
-  EXPECT_EQ(a.exchange_subcycled, b.exchange_subcycled);
+  // The sub-cycler keeps a weight per stored entry and sums over the stored row: the 32-bit
+  // form's padding adds exact zeros, but the compiler may group a row's terms differently
+  // for rows of another length (clang's vectorisation does), so equal to rounding only.
+  ASSERT_EQ(a.c_subcycled.size(), b.c_subcycled.size());
+  double c_diff = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    c_diff = std::max(c_diff, std::fabs(a.c_subcycled[i] - b.c_subcycled[i]));
+  std::printf("sub-cycled C, 16-bit against 32-bit list: largest difference %.1e mol/m^3\n",
+              c_diff);
+  EXPECT_LT(c_diff, 1e-12 * c.species.c_in);
+  EXPECT_NEAR(a.exchange_subcycled, b.exchange_subcycled, 1e-12 * std::fabs(a.exchange_subcycled));
+  EXPECT_NE(a.exchange_subcycled, 0.0);
   EXPECT_NE(a.exchange, 0.0);  // the buffers are within reach of the fluid
   // Not all zero: the passes ran on a state with flow, shifting and gradients of C.
   EXPECT_GT(*std::max_element(a.dc.begin(), a.dc.end()), 0.0f);
