@@ -162,15 +162,13 @@ void SphSolver::evaluate() {
 namespace {
 // The displacement of the first stage of particle i, d = a u (a = dt / 2), as advance<1>()
 // will apply it (no shifting in the scheme that predicts). Walls do not move (0); a < 0: no
-// prediction wanted (0); a NaN: the second stage's, already written by advance<1>().
-constexpr double kWrittenByFirstStage = std::numeric_limits<double>::quiet_NaN();
+// prediction wanted (0).
 struct NextDisplacement {
   const ParticleStore& s;
   float* dx;
   float* dy;
   double a;
   void operator()(std::size_t i) const {
-    if (std::isnan(a)) return;
     if (a < 0.0 || s.kind[i] == kWallByte) {
       dx[i] = dy[i] = 0.0f;
       return;
@@ -179,6 +177,8 @@ struct NextDisplacement {
     dy[i] = static_cast<float>(a * s.vy[i]);
   }
 };
+// evaluate_impl's a_next for the second stage: its displacement is written by advance<1>().
+constexpr double kWrittenByFirstStage = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 template <class S, bool Ale, bool Split, bool Net>
@@ -190,8 +190,12 @@ void SphSolver::evaluate_impl(double a_next) {
     for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) v->resize(n + 1);
     next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
     // The displacements in the same loop as the densities: one pass over the store.
-    summation_density(store_, ctx, density_predicted_ ? density_sum_.data() : nullptr,
-                      NextDisplacement{store_, next_dx_.data(), next_dy_.data(), a_next});
+    const float* predicted = density_predicted_ ? density_sum_.data() : nullptr;
+    if (std::isnan(a_next))  // kWrittenByFirstStage
+      summation_density(store_, ctx, predicted, [](std::size_t) {});
+    else
+      summation_density(store_, ctx, predicted,
+                        NextDisplacement{store_, next_dx_.data(), next_dy_.data(), a_next});
     ctx.next_density = {density_sum_.data(), next_dx_.data(), next_dy_.data()};
   }
   if constexpr (S::momentum) {
