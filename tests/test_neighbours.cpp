@@ -1,6 +1,7 @@
 // Neighbour structures: the cached lists hold exactly the pairs within the cut-off, and the
 // displacement monitor never lets a pair within the kernel support go missing.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -136,6 +137,64 @@ TEST(NeighbourList, SixteenBitOffsetsListWhatThirtyTwoBitIndicesList) {
   EXPECT_NEAR((static_cast<double>(wide.bytes()) - starts) / wide.total(), 4.0, 0.4);
   EXPECT_EQ(static_cast<double>(wide.total()), static_cast<double>(narrow.size()));
   EXPECT_LT(cloud.list.total(), narrow.size());
+}
+
+// The lists of `list` and of a two-pass build on the same positions, row by row.
+void expect_same_as_two_pass(const Cloud& cloud, const char* what) {
+  const std::size_t n = cloud.x.size();
+  NeighbourList fresh;  // a first build: two passes
+  fresh.build(cloud.grid, cloud.x, cloud.y, kCutoff, static_cast<std::uint32_t>(n));
+  ASSERT_FALSE(fresh.one_pass());
+  ASSERT_EQ(cloud.list.total(), fresh.total()) << what;
+  for (std::size_t i = 0; i <= n; ++i)
+    ASSERT_EQ(cloud.list.begin(i), fresh.begin(i)) << what << ": row " << i;
+  EXPECT_EQ(entries(cloud.list, n), entries(fresh, n)) << what;
+  EXPECT_EQ(cloud.list.mean_neighbours(), fresh.mean_neighbours()) << what;
+}
+
+// A build after the first takes one pass over the candidates, each thread storing its rows in
+// a region sized from the previous build's rows; the regions are then moved together. With 1,
+// 2 and 3 threads (regions to close up between shares), it lists what a two-pass build lists.
+TEST(NeighbourList, OnePassBuildListsWhatTheTwoPassBuildLists) {
+  const int threads_before = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    Cloud cloud(29);  // built once: two passes
+    EXPECT_FALSE(cloud.list.one_pass());
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> move(-0.1 * kDx, 0.1 * kDx);
+    for (int rebuild = 0; rebuild < 3; ++rebuild) {
+      for (std::size_t i = 0; i < cloud.x.size(); ++i)
+        cloud.x[i] += move(rng), cloud.y[i] += move(rng);
+      cloud.build();
+      EXPECT_TRUE(cloud.list.one_pass()) << threads << " threads, rebuild " << rebuild;
+      expect_same_as_two_pass(cloud, "after a small motion");
+    }
+  }
+  omp_set_num_threads(threads_before);
+}
+
+// When the rows grow past the headroom of their region (here the cloud is squeezed to 80% of
+// its length: 25% more neighbours), the build falls back to two passes, and still lists exactly
+// what it should; the build after it takes one pass again.
+TEST(NeighbourList, OnePassBuildFallsBackWhenTheRowsOutgrowTheirRegion) {
+  const int threads_before = omp_get_max_threads();
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    Cloud cloud(37);
+    cloud.build();
+    ASSERT_TRUE(cloud.list.one_pass());
+    const double before = cloud.list.mean_neighbours();
+    for (double& x : cloud.x) x *= 0.8;
+    cloud.build();
+    EXPECT_FALSE(cloud.list.one_pass()) << threads << " threads";
+    EXPECT_GT(cloud.list.mean_neighbours(), 1.15 * before);
+    expect_same_as_two_pass(cloud, "after the squeeze");
+    cloud.build();
+    EXPECT_TRUE(cloud.list.one_pass()) << threads << " threads";
+    expect_same_as_two_pass(cloud, "the build after the squeeze");
+  }
+  omp_set_num_threads(threads_before);
 }
 
 // A square of 360 x 360 particles: the Morton order puts some neighbours more than 32,767

@@ -1,6 +1,9 @@
 #include "neighbours/neighbour_list.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <cstring>
 #include <type_traits>
 
 namespace adrsph {
@@ -10,16 +13,24 @@ constexpr std::integral_constant<int, 1> kOneRing{};  // the 3x3 cells around a 
 
 // Growing past the capacity adds ~3% headroom, not std::vector's doubling (the lists are the
 // second largest block of a run, after the particle arrays); the other form is released.
-// `total` entries and the slack a 16-bit row's expansion reads past the last row.
+// `total` entries and the slack a 16-bit row's expansion reads past the last row, with at least
+// `spare` entries of capacity beyond them.
 template <class T, class U>
-void size_entries(std::vector<T>& used, std::vector<U>& other, std::size_t total) {
+void size_entries(std::vector<T>& used, std::vector<U>& other, std::size_t total,
+                  std::size_t spare = 0) {
   const std::size_t size = total + NeighbourList::kSlack;
-  if (size > used.capacity()) {  // the old entries are rewritten: freed first, not copied
+  if (size + spare > used.capacity()) {  // the old entries are rewritten: freed first, not copied
     std::vector<T>().swap(used);
-    used.reserve(size + total / 32);
+    used.reserve(size + std::max(spare, total / 32));
   }
   used.resize(size);
   std::vector<U>().swap(other);
+}
+
+// The capacity a one-pass build wants beyond the entries it expects: rows grow by well under 1%
+// from one build to the next (a build follows the last one by a few steps).
+std::size_t one_pass_spare(std::size_t total) {
+  return total / 128 + NeighbourList::kMaxRow;
 }
 
 // 1 if j belongs in the row of i (within the cut-off, not i itself), else 0. As arithmetic:
@@ -62,11 +73,102 @@ void fill_rows(const CellGrid& grid, std::span<const double> x, std::span<const 
 }
 }  // namespace
 
+bool NeighbourList::build_one_pass(const CellGrid& grid, std::span<const double> x,
+                                   std::span<const double> y, double rc2, std::size_t n) {
+  const std::size_t n_before = offset_.empty() ? 0 : offset_.size() - 1;
+  if (wide_ || n == 0 || n_before == 0) return false;
+  // Each thread's share of the particles, [first[t], first[t + 1]), and of the entries' capacity,
+  // [region[t], region[t + 1]): in proportion to the entries the same index range held at the
+  // previous build (the order is spatial).
+  const auto shares = static_cast<std::size_t>(omp_get_max_threads());
+  std::vector<std::size_t> first(shares + 1), region(shares + 1, 0), length(shares, 0);
+  std::vector<double> expected(shares);
+  double expected_total = 0.0;
+  for (std::size_t t = 0; t <= shares; ++t) first[t] = n * t / shares;
+  for (std::size_t t = 0; t < shares; ++t) {
+    const std::size_t a = std::min(first[t], n_before), b = std::min(first[t + 1], n_before);
+    const double per_particle =
+        b > a ? static_cast<double>(offset_[b] - offset_[a]) / static_cast<double>(b - a) : mean_;
+    expected[t] = per_particle * static_cast<double>(first[t + 1] - first[t]);
+    expected_total += expected[t];
+  }
+  // Without enough spare capacity, two passes, which grow the entries (this build's list is
+  // not stored twice, and a failed one-pass build is rare).
+  const std::size_t capacity = std::max<std::size_t>(offset16_.capacity(), kSlack) - kSlack;
+  const auto wanted = static_cast<std::size_t>(expected_total);
+  if (wanted + one_pass_spare(wanted) > capacity) return false;
+  double cumulative = 0.0;
+  for (std::size_t t = 0; t + 1 < shares; ++t) {
+    cumulative += expected[t];
+    region[t + 1] = static_cast<std::size_t>(static_cast<double>(capacity) * cumulative /
+                                             std::max(expected_total, 1.0));
+  }
+  region[shares] = capacity;
+  offset_.resize(n + 1);
+  offset_[0] = 0;
+  offset16_.resize(capacity + kSlack);  // within its capacity
+  std::int16_t* const entries = offset16_.data();
+  std::uint32_t* const row_end = offset_.data() + 1;
+  std::uint32_t longest = 0;
+  std::int64_t far = 0;
+  int missed = 0;  // a share outgrew its region
+  const int team = static_cast<int>(shares);
+#pragma omp parallel num_threads(team) reduction(max : longest, far, missed)
+  {
+    // Indices, not offsets, so that the range of the row can be checked before it is stored;
+    // a row longer than kMaxRow keeps overwriting its last entry (and is not stored).
+    std::uint32_t row[kMaxRow + 1];
+    const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+    for (auto t = static_cast<std::size_t>(omp_get_thread_num()); t < shares; t += threads) {
+      std::size_t at = region[t];
+      for (std::size_t i = first[t]; i < first[t + 1]; ++i) {
+        std::uint32_t k = 0;
+        const double xi = x[i], yi = y[i];
+        grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
+          const double dx = xi - x[j], dy = yi - y[j];
+          row[std::min(k, kMaxRow)] = j;
+          k += in_row(i, j, dx * dx + dy * dy, rc2);
+        });
+        longest = std::max(longest, k);
+        if (padded(k) > kMaxRow || at + k > region[t + 1]) {
+          missed = 1;
+          break;
+        }
+        auto lo = static_cast<std::uint32_t>(i), hi = lo;
+        for (std::uint32_t m = 0; m < k; ++m) lo = std::min(lo, row[m]), hi = std::max(hi, row[m]);
+        const auto ii = static_cast<std::int64_t>(i);
+        far = std::max({far, ii - std::int64_t{lo}, std::int64_t{hi} - ii});
+        for (std::uint32_t m = 0; m < k; ++m)
+          entries[at + m] = static_cast<std::int16_t>(static_cast<std::int64_t>(row[m]) - ii);
+        at += k;
+        row_end[i] = static_cast<std::uint32_t>(at);
+      }
+      length[t] = at - region[t];
+    }
+  }
+  if (missed || far > kMaxOffset) return false;
+  // Close the gaps between the shares: each moves down to the end of the one before it.
+  std::size_t end = length[0];
+  for (std::size_t t = 1; t < shares; ++t) {
+    const std::size_t shift = region[t] - end;
+    std::memmove(entries + end, entries + region[t], length[t] * sizeof(std::int16_t));
+    for (std::size_t i = first[t]; i < first[t + 1]; ++i)
+      row_end[i] -= static_cast<std::uint32_t>(shift);
+    end += length[t];
+  }
+  offset16_.resize(end + kSlack);
+  mean_ = static_cast<double>(end) / static_cast<double>(n);
+  return true;
+}
+
 void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
                           std::span<const double> y, double cutoff, std::uint32_t padding_index,
                           Width width) {
   const std::size_t n = padding_index;  // real particles are [0, n)
   const double rc2 = cutoff * cutoff;
+  padding_ = padding_index;
+  one_pass_ = width == Width::automatic && build_one_pass(grid, x, y, rc2, n);
+  if (one_pass_) return;
   offset_.assign(n + 1, 0);
   std::size_t real_total = 0;
   std::int64_t far = 0;       // the largest |j - i| of a listed pair
@@ -95,14 +197,13 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
   if (wide_)  // stored padded (the header)
     for (std::size_t i = 0; i < n; ++i) offset_[i + 1] = padded(offset_[i + 1]);
   for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
-  padding_ = padding_index;
   if (wide_) {
     size_entries(index_, offset16_, offset_[n]);
     fill_rows(
         grid, x, y, rc2, offset_, longest, index_.data(),
         [](std::size_t, std::uint32_t j) { return j; }, padding_index);
   } else {
-    size_entries(offset16_, index_, offset_[n]);
+    size_entries(offset16_, index_, offset_[n], one_pass_spare(offset_[n]));
     fill_rows(
         grid, x, y, rc2, offset_, longest, offset16_.data(),
         [](std::size_t i, std::uint32_t j) {
