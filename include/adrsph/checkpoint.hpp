@@ -84,7 +84,7 @@ struct SolverSnapshot {
   ParticleArrays particles;
   std::vector<double> inflow_row_tail;  // x of the most upstream inlet particle of each row
   double t = 0.0;
-  long steps = 0, lost = 0, lost_reported = 0, rebuilds = 0;
+  long steps = 0, lost = 0, lost_reported = 0, rebuilds = 0, two_pass_builds = 0;
   double particle_steps = 0.0;
   // Per species (4 values each, up to 4 species): inflow, outflow, buffer exchange, reaction.
   // A checkpoint written before the ledger was kept per species holds the first 4 only.

@@ -113,6 +113,7 @@ struct RunResult {
   std::size_t n_fluid = 0;            // fluid particles at the end
   double particle_steps_per_s = 0.0;  // sum over steps of particles / wall time
   long list_rebuilds = 0;             // re-sorts + neighbour-list builds (set-up included)
+  long list_two_pass_builds = 0;      // of those, builds in two passes over the candidates
   double mean_neighbours = 0.0;       // list entries per particle at the last build (skin incl.)
   TimeStepLimits dt;
   bool steady = false;

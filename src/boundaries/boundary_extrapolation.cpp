@@ -29,13 +29,11 @@ void extrapolate_with(ParticleStore& s, const PassContext& ctx, const Neighbours
     const double xi = x[i], yi = y[i];
     // Single precision, like the other neighbour passes (shepard averages of float p).
     float sw = 0.0f, sp = 0.0f, su = 0.0f, sv = 0.0f;
-    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
     std::uint32_t row_buffer[NeighbourList::kRowBuffer];
-    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    const std::uint32_t len = NeighbourList::padded(ke - kb);  // whole vectors
+    const NeighbourList::Row row = ctx.neighbours.row_of(form, i, row_buffer);
 #pragma omp simd reduction(+ : sw, sp, su, sv)
-    for (std::uint32_t k = 0; k < len; ++k) {
-      const std::uint32_t j = nb[k];
+    for (std::uint32_t k = 0; k < row.whole; ++k) {
+      const std::uint32_t j = row.index[k];
       const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
       // Fluid and outlet particles are the "fluid side" a boundary particle samples (a float
       // mask, not kind[j]: a byte gather keeps g++ from vectorising the loop).

@@ -63,8 +63,9 @@ void print_summary(std::ostream& os, const Case& c, const RunResult& r, const Su
      << (r.steady ? "yes, at t = " + fmt("%.4g", r.t_steady) + " s" : std::string("no")) << "\n";
   if (r.steps > 0)
     os << "  neighbour lists: " << r.list_rebuilds << " builds (one per "
-       << fmt("%.3g", static_cast<double>(r.steps) / std::max(1L, r.list_rebuilds)) << " steps), "
-       << fmt("%.1f", r.mean_neighbours) << " entries per particle\n";
+       << fmt("%.3g", static_cast<double>(r.steps) / std::max(1L, r.list_rebuilds)) << " steps, "
+       << r.list_two_pass_builds << " in two passes), " << fmt("%.1f", r.mean_neighbours)
+       << " entries per particle\n";
   if (r.lost_particles > 0) os << "  lost particles: " << r.lost_particles << "\n";
   print_phases(os, r);
   auto stations = [&](const std::string& label, const StationTable& st) {

@@ -193,6 +193,7 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
   // Throughput of the stepping alone (set-up and warm start excluded).
   result.particle_steps_per_s = solver.particle_steps() / std::max(loop.stepping_now(), 1e-9);
   result.list_rebuilds = solver.list_rebuilds();
+  result.list_two_pass_builds = solver.list_two_pass_builds();
   result.mean_neighbours = solver.mean_neighbours();
   result.steady = loop.steady().steady();
   result.t_steady = loop.steady().t_steady();

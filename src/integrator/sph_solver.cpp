@@ -142,6 +142,7 @@ void SphSolver::rebuild() {
   moved_abs_ = 0.0;
   density_predicted_ = false;  // indices changed
   ++rebuilds_;
+  if (!list_.one_pass()) ++two_pass_builds_;
 }
 
 bool SphSolver::needs_rebuild() {

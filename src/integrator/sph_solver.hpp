@@ -91,6 +91,8 @@ class SphSolver {
   std::size_t fluid_count() const;
   double mean_neighbours() const { return list_.mean_neighbours(); }
   long list_rebuilds() const { return rebuilds_; }
+  // Of those, the builds that took two passes over the candidates (NeighbourList::one_pass()).
+  long list_two_pass_builds() const { return two_pass_builds_; }
   double particle_steps() const { return particle_steps_; }
   // Heap bytes of the particle arrays, the neighbour lists and the diffusion weights.
   std::size_t particle_bytes() const { return store_.bytes(); }
@@ -190,6 +192,7 @@ class SphSolver {
   void trim_heap();  // give freed heap pages back to the system (glibc)
   DisplacementMonitor monitor_;
   long rebuilds_ = 0;
+  long two_pass_builds_ = 0;
   double cutoff_ = 0.0, skin_ = 0.0, moved_abs_ = 0.0;
   double abs_limit_ = 0.0;  // absolute displacement allowed between re-sorts
   double t_ = 0.0;

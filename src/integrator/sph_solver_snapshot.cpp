@@ -26,6 +26,7 @@ SolverSnapshot SphSolver::snapshot() const {
   s.lost = lost_;
   s.lost_reported = lost_reported_;
   s.rebuilds = rebuilds_;
+  s.two_pass_builds = two_pass_builds_;
   s.particle_steps = particle_steps_;
   static_assert(sizeof(s.ledger) == sizeof(double) * 4 * Case::kMaxSpecies);
   for (int e = 0; e < Case::kMaxSpecies; ++e) {
@@ -75,6 +76,7 @@ void SphSolver::restore(const SolverSnapshot& s) {
   lost_ = s.lost;
   lost_reported_ = s.lost_reported;
   rebuilds_ = s.rebuilds;
+  two_pass_builds_ = s.two_pass_builds;
   particle_steps_ = s.particle_steps;
   for (int e = 0; e < Case::kMaxSpecies; ++e) {
     const double* l = s.ledger.data() + 4 * e;

@@ -112,6 +112,7 @@ constexpr std::pair<const char*, long SolverSnapshot::*> kSolverCounters[] = {
     {"lost", &SolverSnapshot::lost},
     {"lost_reported", &SolverSnapshot::lost_reported},
     {"rebuilds", &SolverSnapshot::rebuilds},
+    {"two_pass_builds", &SolverSnapshot::two_pass_builds},
     {"entered", &SolverSnapshot::entered},
     {"left", &SolverSnapshot::left}};
 
@@ -157,7 +158,12 @@ SolverSnapshot read_solver(hid_t root, const std::string& file) {
   for (const auto& [name, field] : kSolverDoubles) s.*field = get<double>(id, grp, name, file);
   for (const auto& [name, field] : kSolverScalars)
     s.*field = read_attribute<double>(id, name, file);
-  for (const auto& [name, field] : kSolverCounters) s.*field = get_long(id, name, file);
+  for (const auto& [name, field] : kSolverCounters) {
+    // A checkpoint written before the two-pass builds were counted has none: 0.
+    if (field == &SolverSnapshot::two_pass_builds && H5Lexists(id, name, H5P_DEFAULT) <= 0)
+      continue;
+    s.*field = get_long(id, name, file);
+  }
   const auto ledger = get<double>(id, grp, "ledger", file);
   if (ledger.size() != s.ledger.size() && ledger.size() != 4)  // 4: the first species only
     throw std::runtime_error(file + ": malformed /solver/ledger");

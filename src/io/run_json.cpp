@@ -71,6 +71,7 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["wall_seconds"] = number(r.wall_s > 0.0 ? r.wall_s : ctx.wall_seconds);
   j["particle_steps_per_second"] = number(r.particle_steps_per_s);
   j["list_rebuilds"] = r.list_rebuilds;
+  j["list_two_pass_builds"] = r.list_two_pass_builds;
   j["mean_neighbours"] = number(r.mean_neighbours);
   j["dt"] = Json{{"chosen", number(r.dt.chosen)},
                  {"binding", r.dt.binding},

@@ -33,6 +33,14 @@ std::size_t one_pass_spare(std::size_t total) {
   return total / 128 + NeighbourList::kMaxRow;
 }
 
+// The capacity the first build leaves beyond its entries: a run that starts from the lattice
+// lists ~9% more pairs a few steps later, once the lattice has disordered (the coarse reactor's
+// 10-step probe, perf/README.md section 3.19), and a one-pass build that outgrows its capacity
+// is a build and a half. The capacity is the same as that of a list regrown after such a miss.
+std::size_t first_build_spare(std::size_t total) {
+  return total / 8 + NeighbourList::kMaxRow;
+}
+
 // 1 if j belongs in the row of i (within the cut-off, not i itself), else 0. As arithmetic:
 // `j != i && d2 < rc2` is compiled to two branches, and in a run the distance test follows no
 // pattern (the self pair has d2 = 0 and is taken off by the subtraction).
@@ -167,6 +175,7 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
   const std::size_t n = padding_index;  // real particles are [0, n)
   const double rc2 = cutoff * cutoff;
   padding_ = padding_index;
+  const bool first_build = offset_.empty();
   one_pass_ = width == Width::automatic && build_one_pass(grid, x, y, rc2, n);
   if (one_pass_) return;
   offset_.assign(n + 1, 0);
@@ -203,7 +212,8 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
         grid, x, y, rc2, offset_, longest, index_.data(),
         [](std::size_t, std::uint32_t j) { return j; }, padding_index);
   } else {
-    size_entries(offset16_, index_, offset_[n], one_pass_spare(offset_[n]));
+    size_entries(offset16_, index_, offset_[n],
+                 first_build ? first_build_spare(offset_[n]) : one_pass_spare(offset_[n]));
     fill_rows(
         grid, x, y, rc2, offset_, longest, offset16_.data(),
         [](std::size_t i, std::uint32_t j) {

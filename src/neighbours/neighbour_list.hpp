@@ -57,14 +57,15 @@ class NeighbourList {
     return (count + kPad - 1) / kPad * kPad;
   }
 
-  // The two forms. A pass takes, for each particle i, row(i, kb, ke, buffer): the indices of
-  // its entries [kb, ke) followed by the padding particle up to padded(ke - kb) entries, then
-  // runs its pair loop over that array. The pair loops are thus the same code for both forms:
-  // g++ 12 does not vectorise a pair loop that reads 16-bit entries itself (it picks 16 lanes
-  // from them, and has no gather of 16 doubles), which ran 2.2x the instructions (perf guard).
-  // 16-bit form: i + offset expanded into `buffer` (kRowBuffer entries, one short vector loop),
-  // then the padding. The loop reads up to kPad - 1 entries past the row's end (the next row's,
-  // or the kSlack entries the array holds past the last row), which the padding overwrites.
+  // The two forms. A pass takes, for each particle i, row(i, kb, ke, buffer) (through row_of,
+  // below): the indices of its entries [kb, ke) followed by the padding particle up to
+  // padded(ke - kb) entries, then runs its pair loop over that array. The pair loops are thus the
+  // same code for both forms: g++ 12 does not vectorise a pair loop that reads 16-bit entries
+  // itself (it picks 16 lanes from them, and has no gather of 16 doubles), which ran 2.2x the
+  // instructions (perf guard). 16-bit form: i + offset expanded into `buffer` (kRowBuffer entries,
+  // one short vector loop), then the padding. The loop reads up to kPad - 1 entries past the row's
+  // end (the next row's, or the kSlack entries the array holds past the last row), which the
+  // padding overwrites.
   struct Offsets {
     const std::int16_t* entries;
     std::uint32_t padding;
@@ -79,6 +80,20 @@ class NeighbourList {
       return entries + kb;
     }
   };
+
+  // Particle i's row as a pass reads it: row_of(form, i, buffer) with `buffer` of kRowBuffer
+  // entries on the pass's stack (the 16-bit form expands the row into it).
+  struct Row {
+    const std::uint32_t* index;  // the neighbours, then the padding particle up to `whole`
+    std::uint32_t first;         // the position of its first stored entry (arrays per entry)
+    std::uint32_t stored;        // its stored entries: the real ones (16-bit), padded (32-bit)
+    std::uint32_t whole;         // padded(stored): the entries a pair loop runs over
+  };
+  template <class Form>
+  Row row_of(const Form& form, std::size_t i, std::uint32_t* buffer) const {
+    const std::uint32_t kb = begin(i), ke = end(i);
+    return {form.row(i, kb, ke, buffer), kb, ke - kb, padded(ke - kb)};
+  }
 
   // Build for particles already sorted by `grid` (grid.sort() then permuted). Self excluded.
   void build(const CellGrid& grid, std::span<const double> x, std::span<const double> y,

@@ -58,13 +58,11 @@ inline float kernel_sum(std::size_t i, const double* x, const double* y, const N
                         const NeighbourList& list, const QuinticKernel& kernel) {
   const double xi = x[i], yi = y[i];
   float sum = 0.0f;
-  const std::uint32_t kb = list.begin(i), ke = list.end(i);
   std::uint32_t row_buffer[NeighbourList::kRowBuffer];
-  const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-  const std::uint32_t len = NeighbourList::padded(ke - kb);  // whole vectors
+  const NeighbourList::Row row = list.row_of(form, i, row_buffer);
 #pragma omp simd reduction(+ : sum)
-  for (std::uint32_t k = 0; k < len; ++k) {
-    const std::uint32_t j = nb[k];
+  for (std::uint32_t k = 0; k < row.whole; ++k) {
+    const std::uint32_t j = row.index[k];
     const auto dx = static_cast<float>(xi - x[j]), dy = static_cast<float>(yi - y[j]);
     sum += kernel.value<float>(std::sqrt(dx * dx + dy * dy));
   }

@@ -93,13 +93,11 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const Neigh
     const double c1i = Network ? c1[i] : 0.0, c2i = Network ? c2[i] : 0.0,
                  c3i = Network ? c3[i] : 0.0;
     const real ddxi = kPredict ? ddx[i] : real(0), ddyi = kPredict ? ddy[i] : real(0);
-    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
     std::uint32_t row_buffer[NeighbourList::kRowBuffer];
-    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    const std::uint32_t len = NeighbourList::padded(ke - kb);  // whole vectors
+    const NeighbourList::Row row = ctx.neighbours.row_of(form, i, row_buffer);
 #pragma omp simd reduction(+ : ax, ay, drho, gx, gy, cdiff, cdil, cgx, cgy, wsum, cd1, cd2, cd3)
-    for (std::uint32_t k = 0; k < len; ++k) {
-      const std::uint32_t j = nb[k];
+    for (std::uint32_t k = 0; k < row.whole; ++k) {
+      const std::uint32_t j = row.index[k];
       const real dx = static_cast<real>(xi - x[j]), dy = static_cast<real>(yi - y[j]);
       const real r2 = dx * dx + dy * dy;
       const real r = std::sqrt(r2) + real(1e-30);

@@ -25,14 +25,12 @@ void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const 
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != kFluidByte) continue;
     const double xi = x[i], yi = y[i], voli = vol[i];
-    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
     std::uint32_t row_buffer[NeighbourList::kRowBuffer];
-    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    float* wi = w + kb;  // a weight per stored entry (neighbour_list.hpp: which are stored)
-    const std::uint32_t len = ke - kb;
+    const NeighbourList::Row row = ctx.neighbours.row_of(form, i, row_buffer);
+    float* wi = w + row.first;  // a weight per stored entry (neighbour_list.hpp: which are stored)
 #pragma omp simd
-    for (std::uint32_t k = 0; k < len; ++k) {
-      const std::uint32_t j = nb[k];
+    for (std::uint32_t k = 0; k < row.stored; ++k) {
+      const std::uint32_t j = row.index[k];
       const double dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
       double lap_weight = kernel.laplacian_weight(r2, eta2);
       // The image of j across the wall (species/wall_images.hpp): the same C_j, so its weight
@@ -57,18 +55,16 @@ double rates_with(const ParticleStore& s, const PassContext& ctx, const Neighbou
     if (s.kind[i] != kFluidByte) continue;
     const double ci = cc[i];
     double sum = 0.0;
-    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
     std::uint32_t row_buffer[NeighbourList::kRowBuffer];
-    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    const float* wi = w + kb;
-    const std::uint32_t len = ke - kb;
+    const NeighbourList::Row row = ctx.neighbours.row_of(form, i, row_buffer);
+    const float* wi = w + row.first;
 #pragma omp simd reduction(+ : sum)
-    for (std::uint32_t k = 0; k < len; ++k) sum += wi[k] * (ci - cc[nb[k]]);
+    for (std::uint32_t k = 0; k < row.stored; ++k) sum += wi[k] * (ci - cc[row.index[k]]);
     rate[i] = factor * sum;
     if (track) {  // flux from the buffers, for the species balance (tests, diagnostics)
       double from_buffers = 0.0;
-      for (std::uint32_t k = 0; k < len; ++k) {
-        const std::uint32_t j = nb[k];
+      for (std::uint32_t k = 0; k < row.stored; ++k) {
+        const std::uint32_t j = row.index[k];
         const std::uint8_t kj = s.kind[j];
         if (kj == kInletByte || kj == kOutletByte) from_buffers += wi[k] * (ci - cc[j]);
       }

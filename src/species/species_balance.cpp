@@ -15,11 +15,10 @@ double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const 
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != kFluidByte) continue;
     double rate = 0.0;
-    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
     std::uint32_t row_buffer[NeighbourList::kRowBuffer];
-    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    for (std::uint32_t k = 0; k < ke - kb; ++k) {
-      const std::uint32_t j = nb[k];
+    const NeighbourList::Row row = ctx.neighbours.row_of(form, i, row_buffer);
+    for (std::uint32_t k = 0; k < row.stored; ++k) {
+      const std::uint32_t j = row.index[k];
       if (s.kind[j] != kInletByte && s.kind[j] != kOutletByte) continue;
       const double dx = s.x[i] - s.x[j], dy = s.y[i] - s.y[j], r2 = dx * dx + dy * dy;
       double lap_weight = ctx.kernel.laplacian_weight(r2, eta2);

@@ -19,11 +19,10 @@ void add_with(ParticleStore& s, const PassContext& ctx, const Neighbours form) {
     if (s.kind[i] != kFluidByte || wall_y - std::fabs(s.y[i]) >= reach) continue;
     const double xi = s.x[i], yi = s.y[i], voli = s.vol[i];
     double sum = 0.0, sum_more[ParticleStore::kMaxMore] = {};
-    const std::uint32_t kb = ctx.neighbours.begin(i), ke = ctx.neighbours.end(i);
     std::uint32_t row_buffer[NeighbourList::kRowBuffer];
-    const std::uint32_t* nb = form.row(i, kb, ke, row_buffer);
-    for (std::uint32_t k = 0; k < ke - kb; ++k) {
-      const std::uint32_t j = nb[k];
+    const NeighbourList::Row row = ctx.neighbours.row_of(form, i, row_buffer);
+    for (std::uint32_t k = 0; k < row.stored; ++k) {
+      const std::uint32_t j = row.index[k];
       if (dmask[j] == 0.0f) continue;  // walls and the outflow buffer carry no diffusion
       const double r2 = wall_image_r2(xi - s.x[j], yi, s.y[j], wall_y);
       if (r2 >= reach2) continue;
