@@ -101,7 +101,6 @@ void BM_NeighbourList(benchmark::State& state) {
 }
 BENCHMARK(BM_NeighbourList)->Apply(resolutions)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// rho_i = m sum_j W_ij (conventional scheme).
 // The same build on the particles of a run: the fixture is stepped into disorder first
 // (disorder_steps), and the positions are sorted into the grid's order on a copy. On the
 // lattice the in/out test of each candidate follows a pattern the branch predictor learns;
@@ -120,12 +119,14 @@ void BM_NeighbourListDisordered(benchmark::State& state) {
   }
   per_particle(state, x.size(), "particle-evals/s");
   state.counters["neighbours"] = list.mean_neighbours();
+  state.counters["one_pass"] = list.one_pass() ? 1 : 0;  // every build after the first, as in a run
 }
 BENCHMARK(BM_NeighbourListDisordered)
     ->Apply(resolutions)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// rho_i = m sum_j W_ij (conventional scheme).
 void BM_SummationDensity(benchmark::State& state) {
   Fixture& fx = fixture(Variant::conventional, state.range(0), kPasses);
   const PassContext ctx = fx.context();
