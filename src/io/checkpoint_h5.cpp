@@ -112,9 +112,11 @@ constexpr std::pair<const char*, long SolverSnapshot::*> kSolverCounters[] = {
     {"lost", &SolverSnapshot::lost},
     {"lost_reported", &SolverSnapshot::lost_reported},
     {"rebuilds", &SolverSnapshot::rebuilds},
-    {"two_pass_builds", &SolverSnapshot::two_pass_builds},
     {"entered", &SolverSnapshot::entered},
     {"left", &SolverSnapshot::left}};
+// Counters kept since checkpoints were first written: a checkpoint without one reads 0.
+constexpr std::pair<const char*, long SolverSnapshot::*> kSolverLaterCounters[] = {
+    {"two_pass_builds", &SolverSnapshot::two_pass_builds}};
 
 void write_solver(hid_t root, const SolverSnapshot& s, const std::string& file) {
   const auto g = create_group(root, "solver", file);
@@ -129,6 +131,7 @@ void write_solver(hid_t root, const SolverSnapshot& s, const std::string& file) 
   for (const auto& [name, field] : kSolverDoubles) put(id, name, s.*field, file);
   for (const auto& [name, field] : kSolverScalars) write_attribute(id, name, s.*field, file);
   for (const auto& [name, field] : kSolverCounters) put_long(id, name, s.*field, file);
+  for (const auto& [name, field] : kSolverLaterCounters) put_long(id, name, s.*field, file);
   put(id, "ledger", std::vector<double>(s.ledger.begin(), s.ledger.end()), file);
 }
 
@@ -158,12 +161,9 @@ SolverSnapshot read_solver(hid_t root, const std::string& file) {
   for (const auto& [name, field] : kSolverDoubles) s.*field = get<double>(id, grp, name, file);
   for (const auto& [name, field] : kSolverScalars)
     s.*field = read_attribute<double>(id, name, file);
-  for (const auto& [name, field] : kSolverCounters) {
-    // A checkpoint written before the two-pass builds were counted has none: 0.
-    if (field == &SolverSnapshot::two_pass_builds && H5Lexists(id, name, H5P_DEFAULT) <= 0)
-      continue;
-    s.*field = get_long(id, name, file);
-  }
+  for (const auto& [name, field] : kSolverCounters) s.*field = get_long(id, name, file);
+  for (const auto& [name, field] : kSolverLaterCounters)
+    if (H5Lexists(id, name, H5P_DEFAULT) > 0) s.*field = get_long(id, name, file);
   const auto ledger = get<double>(id, grp, "ledger", file);
   if (ledger.size() != s.ledger.size() && ledger.size() != 4)  // 4: the first species only
     throw std::runtime_error(file + ": malformed /solver/ledger");
