@@ -165,8 +165,9 @@ template <class S>
 void BM_ForcePass(benchmark::State& state) {
   Fixture& fx = fixture(variant_of<S>(), state.range(0), kPasses);
   const PassContext ctx = fx.context();
+  PairRecords records;
   for (auto _ : state) {
-    interaction_pass<S, false>(fx.solver.particles(), ctx);
+    interaction_pass<S, false>(fx.solver.particles(), ctx, records);
     benchmark::ClobberMemory();
   }
   per_particle(state, fx.size(), "particle-evals/s");

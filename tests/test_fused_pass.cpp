@@ -145,7 +145,8 @@ TEST(FusedPass, BothFormsOfTheListGiveTheSameValues) {
     ParticleStore t = s;  // each form from the same state
     Values v;
     extrapolate_to_boundaries(t, ctx);
-    interaction_pass<ModernScheme, false>(t, ctx);
+    PairRecords records;
+    interaction_pass<ModernScheme, false>(t, ctx, records);
     add_wall_image_diffusion(t, ctx);
     v.exchange = species_buffer_exchange_rate(t, ctx, t.c.data(), c.species.D);
     for (std::size_t i = 0; i < n; ++i)

@@ -28,7 +28,7 @@ RunResult sample_result() {
   r.stations = {{25.0, 50.0, 100.0}, {1.38, 1.04, 0.63}};
   r.average_window = 0.5;
   r.probe_interpolation = "Shepard";
-  r.engine_bytes = {1000, 2000, 300};
+  r.engine_bytes = {1000, 2000, 300, 400};
   r.balance_flow_rate = 1333.0;
   r.species_balance = {{"C", 0.05, 0.049, 0.0, 0.001}};
   return r;
@@ -96,6 +96,7 @@ TEST(RunJson, EveryKey) {
   EXPECT_EQ(j["engine_bytes"]["particles"], 1000);
   EXPECT_EQ(j["engine_bytes"]["neighbour_lists"], 2000);
   EXPECT_EQ(j["engine_bytes"]["diffusion_weights"], 300);
+  EXPECT_EQ(j["engine_bytes"]["pair_records"], 400);
 }
 
 TEST(RunJson, WarmStart) {

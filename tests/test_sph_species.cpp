@@ -298,6 +298,7 @@ TEST(Solver, ReleaseSteppingMemoryKeepsTheStateAndRefusesSteps) {
   for (int k = 0; k < 3; ++k) ASSERT_TRUE(solver.step(solver.dt_limits().chosen));
   ASSERT_GT(solver.list_bytes(), 0u);
   ASSERT_GT(solver.diffusion_weight_bytes(), 0u);
+  ASSERT_GT(solver.pair_record_bytes(), 0u);
   std::vector<double> p_before, p_after;
   const FieldFrame before = solver.frame(p_before);
   const std::vector<double> c_before(before.c.begin(), before.c.end());
@@ -306,6 +307,7 @@ TEST(Solver, ReleaseSteppingMemoryKeepsTheStateAndRefusesSteps) {
   solver.release_stepping_memory();
   EXPECT_EQ(solver.list_bytes(), 0u);
   EXPECT_EQ(solver.diffusion_weight_bytes(), 0u);
+  EXPECT_EQ(solver.pair_record_bytes(), 0u);
   EXPECT_EQ(solver.mean_neighbours(), mean);
   const FieldFrame after = solver.frame(p_after);
   EXPECT_EQ(std::vector<double>(after.c.begin(), after.c.end()), c_before);

@@ -139,7 +139,7 @@ RunResult run_simulation(const Case& c, RunObserver& observer, const RunCheckpoi
   result.n_fluid = solver.fluid_count();
   result.peak_rss_bytes = std::max(result.peak_rss_bytes, peak_rss_bytes());
   result.engine_bytes = {solver.particle_bytes(), solver.list_bytes(),
-                         solver.diffusion_weight_bytes()};
+                         solver.diffusion_weight_bytes(), solver.pair_record_bytes()};
   result.balance_flow_rate = 2.0 * c.geometry.half_width * (2.0 / 3.0) * c.u_max();
   result.species_balance.clear();
   for (int e = 0; e < c.species_count(); ++e) {

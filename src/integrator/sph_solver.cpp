@@ -208,7 +208,7 @@ void SphSolver::evaluate_impl(double a_next) {
     extrapolate_to_boundaries(store_, ctx);
   }
   ScopedPhase timer(timers_, Phase::forces);
-  interaction_pass<S, Ale, !Split, Net>(store_, ctx);
+  interaction_pass<S, Ale, !Split, Net>(store_, ctx, pair_records_);
   if (!Split && phys_.wall_image_y > 0.0) add_wall_image_diffusion(store_, ctx);
 }
 
@@ -446,6 +446,7 @@ void SphSolver::release_stepping_memory() {
   for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) std::vector<float>().swap(*v);
   density_predicted_ = false;
   list_.release();
+  pair_records_.release();
   (void)monitor_.release_storage();
   subcycler_.release();
   trim_heap();

@@ -19,6 +19,7 @@
 #include "neighbours/displacement_monitor.hpp"
 #include "neighbours/neighbour_list.hpp"
 #include "particles/particle_store.hpp"
+#include "schemes/pair_records.hpp"
 #include "schemes/pass_context.hpp"
 #include "species/diffusion_subcycling.hpp"
 
@@ -94,10 +95,12 @@ class SphSolver {
   // Of those, the builds that took two passes over the candidates (NeighbourList::one_pass()).
   long list_two_pass_builds() const { return two_pass_builds_; }
   double particle_steps() const { return particle_steps_; }
-  // Heap bytes of the particle arrays, the neighbour lists and the diffusion weights.
+  // Heap bytes of the particle arrays, the neighbour lists, the diffusion weights and the force
+  // pass's neighbour records (pair_records.hpp).
   std::size_t particle_bytes() const { return store_.bytes(); }
   std::size_t list_bytes() const { return list_.bytes(); }
   std::size_t diffusion_weight_bytes() const { return subcycler_.bytes(); }
+  std::size_t pair_record_bytes() const { return pair_records_.bytes(); }
   // Probe sampling on the grid of the last sort, read-only: a particle within the support of
   // a probe now was within support + moved_abs_ at the sort, so the search covers that many
   // cells of size cutoff_ around it.
@@ -181,6 +184,7 @@ class SphSolver {
   ParticleStore store_;
   CellGrid grid_;
   NeighbourList list_;
+  PairRecords pair_records_;  // what the force pass reads of each neighbour, per evaluation
   PhaseTimers timers_;
   bool (SphSolver::*step_fn_)(double) = nullptr;
   void (SphSolver::*eval_fn_)() = nullptr;

@@ -137,7 +137,8 @@ std::string run_json_text(const Case& c, const RunResult& r, const RunContext& c
   j["peak_rss_bytes"] = number(r.peak_rss_bytes);
   j["engine_bytes"] = {{"particles", r.engine_bytes.particles},
                        {"neighbour_lists", r.engine_bytes.neighbour_lists},
-                       {"diffusion_weights", r.engine_bytes.diffusion_weights}};
+                       {"diffusion_weights", r.engine_bytes.diffusion_weights},
+                       {"pair_records", r.engine_bytes.pair_records}};
   j["restarts"] = r.restarts;
   j["steady_criterion"] = Json{{"tol", number(r.steady_criterion.tol)},
                                {"window", number(r.steady_criterion.window)},

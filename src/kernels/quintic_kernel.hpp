@@ -23,7 +23,8 @@ struct QuinticKernel {
   // (x)_+ = (x + |x|) / 2, branch-free (see the file comment).
   template <class T>
   static T positive(T v) {
-    return T(0.5) * (v + std::fabs(v));
+    using std::fabs;  // and simd::fabs for eight lanes (schemes/simd8.hpp)
+    return T(0.5) * (v + fabs(v));
   }
 
   // W(r). T = float for the single-precision passes.
