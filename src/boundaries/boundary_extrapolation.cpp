@@ -49,7 +49,6 @@ void extrapolate_with(ParticleStore& s, const PassContext& ctx, const Neighbours
     s.p[i] = static_cast<float>(pw);
     s.rho[i] = rhow;
     s.vol[i] = static_cast<float>(mass / rhow);
-    s.rho_excess[i] = static_cast<float>(rhow - eos.rho0);
     if (ki == kWallByte) {
       s.vx[i] = sw > 0.0f ? -double(su) / sw : 0.0;
       s.vy[i] = sw > 0.0f ? -double(sv) / sw : 0.0;

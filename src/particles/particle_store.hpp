@@ -26,11 +26,6 @@ struct ParticleStore {
   // "float storage"); halving them saves 40 bytes per particle.
   std::vector<float> p;    // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
   std::vector<float> vol;  // V = m / rho [mm^2]
-  // rho - rho0 [kg/m^3], set with p and V (Needs::momentum): what the force pass reads of a
-  // neighbour's density, a float instead of a double per pair (a fine run 2% faster,
-  // perf/README.md, 3.17). The excess is ~1e-2 rho0 at most, so its float rounding is
-  // ~1e-9 rho0, far below the neighbour differences (~1e-4 rho0) the pass takes of it.
-  std::vector<float> rho_excess;
   // 1 where the particle exchanges species by diffusion: fluid and the inflow buffer (the
   // Dirichlet inlet, C = c_in). 0 for walls (no flux through them) and the outflow buffer
   // (zero diffusive flux through the outlet plane: the zero-gradient outlet of
@@ -61,7 +56,7 @@ struct ParticleStore {
   // Which optional arrays the scheme writes and reads (scheme_traits.hpp): the others stay
   // empty. Set before the store is first sized (set_needs() resizes what it switches on).
   struct Needs {
-    bool momentum = true;        // ax, ay and their first-stage copies, rho_excess
+    bool momentum = true;        // ax, ay and their first-stage copies
     bool continuity = true;      // drho and drho_first
     bool shifting = true;        // sx, sy and their first-stage copies
     int more_species = 0;        // c_more, dc_more and their first-stage/start arrays in use
@@ -122,7 +117,6 @@ struct ParticleStore {
     visit(s.dc, per_step, "dc");
     for (int e = 0; e < s.needs_.more_species; ++e) visit(s.dc_more[e], per_step, more_dc[e]);
     if (s.needs_.momentum) visit(s.ax, per_step, "ax"), visit(s.ay, per_step, "ay");
-    if (s.needs_.momentum) visit(s.rho_excess, per_step, "rho_excess");
     if (s.needs_.continuity) visit(s.drho, per_step, "drho");
     if (s.needs_.shifting) visit(s.sx, per_step, "sx"), visit(s.sy, per_step, "sy");
     for_each_first_stage_pair(s, [&](auto&, auto& first) { visit(first, per_step, "first"); });

@@ -27,19 +27,18 @@ template <class EachParticle>
 void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted,
                        EachParticle&& each);
 
-// p_i = Tait(rho_i) (+ p_b), eq. (2), V_i = m / rho_i and rho_i - rho0 (ParticleStore::
-// rho_excess), of the fluid particles; the outflow buffer gets its fixed state
+// p_i = Tait(rho_i) (+ p_b), eq. (2) and V_i = m / rho_i of the fluid particles; the outflow
+// buffer gets its fixed state
 // (outflow_state). The boundary pass sets walls and inflow buffer.
 void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass);
 
-// rho_i and what follows from it: p_i = Tait(rho_i) (+ p_b), eq. (2), V_i = m / rho_i and
-// rho_i - rho0 (ParticleStore::rho_excess). The one place a density passes on to them.
+// rho_i and what follows from it: p_i = Tait(rho_i) (+ p_b), eq. (2) and V_i = m / rho_i.
+// The one place a density passes on to them.
 inline void set_density_state(ParticleStore& s, std::size_t i, double rho, const TaitEos& eos,
                               double mass) {
   s.rho[i] = rho;
   s.p[i] = static_cast<float>(eos.pressure(rho));
   s.vol[i] = static_cast<float>(mass / rho);
-  s.rho_excess[i] = static_cast<float>(rho - eos.rho0);
 }
 
 // The outflow buffer's state: the rest density rho0, so p = p_b exactly, the reference the

@@ -29,8 +29,8 @@ namespace adrsph {
 // transposed, one vector per field. The differences that would lose digits in float (the
 // separation r_i - r_j, u_i - u_j and C_i - C_j: neighbour differences are ~1e-4 of the
 // values) are taken from the records' hi and lo parts and rounded once, as the difference of
-// the doubles would be. Densities enter as rho - rho0 (ParticleStore::rho_excess, ~1e-2 rho0 at
-// most), whose float difference keeps what the double one would. The sums of ~35 pair terms
+// the doubles would be. Densities enter as rho - rho0 in float (~1e-2 rho0 at most), whose
+// float difference keeps what the double one would. The sums of ~35 pair terms
 // are float too; their rounding (~1e-7 relative) is far below the scheme's own pair-sum errors
 // (tests/test_fused_pass.cpp holds them to the same sums in double).
 //
@@ -196,9 +196,9 @@ template <class Scheme, bool Ale, bool Diffuse = true, bool Network = false, cla
 void interaction_pass(ParticleStore& s, const PassContext& ctx, PairRecords& records) {
   using L = RecordLayout<Scheme::momentum, Network>;
   if constexpr (Scheme::summation_density)
-    records.fill<L, 2>(s, ctx.next_density.dx, ctx.next_density.dy);
+    records.fill<L, 2>(s, ctx.phys.eos.rho0, ctx.next_density.dx, ctx.next_density.dy);
   else
-    records.fill<L, Ale ? 1 : 0>(s, s.fluid_side.data(), nullptr);
+    records.fill<L, Ale ? 1 : 0>(s, ctx.phys.eos.rho0, s.fluid_side.data(), nullptr);
   ctx.neighbours.with_indices([&](auto form) {
     interaction_pass_with<Scheme, Ale, Diffuse, Network, V>(s, ctx, records.data(), form);
   });

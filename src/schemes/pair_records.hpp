@@ -8,7 +8,9 @@
 // differences are ~1e-4 of the values) is stored as two floats, hi = float(v) and
 // lo = float(v - hi). Then v_i - v_j = (hi_i - hi_j) + (lo_i - lo_j): the first difference is
 // exact for close values (Sterbenz), the second carries the ~1e-8 relative rest, and the sum is
-// rounded once, as float(v_i - v_j) taken in double was before.
+// rounded once, as float(v_i - v_j) taken in double was before. The density enters as
+// rho_excess = float(rho - rho0): the excess is ~1e-2 rho0 at most, so its float rounding is
+// ~1e-9 rho0, far below the neighbour differences (~1e-4 rho0) the pass takes of it.
 //
 // Layouts (field indices, by what the scheme needs; `Flow`: momentum schemes):
 //   Flow:    x_hi y_hi x_lo y_lo vx_hi vy_hi vx_lo vy_lo | c_hi c_lo rho_excess p vol
@@ -62,12 +64,13 @@ struct CacheLineAllocator {
 
 class PairRecords {
  public:
-  // Fill the records of every particle, the padding particle included. `extra0`, `extra1`:
-  // per-particle floats for the Flow layout's two spare fields, the first kExtras of them given
-  // (the others are set to 0). A compile-time count: a test of the pointers inside the loop
+  // Fill the records of every particle, the padding particle included, from the state the
+  // density and boundary passes of this evaluation left (rho0: the rest density). `extra0`,
+  // `extra1`: per-particle floats for the Flow layout's two spare fields, the first kExtras of them
+  // given (the others are set to 0). A compile-time count: a test of the pointers inside the loop
   // made g++ use masked loads, which tripled the fill's time (perf/README.md, section 3.20).
   template <class Layout, int kExtras>
-  void fill(const ParticleStore& s, const float* extra0, const float* extra1) {
+  void fill(const ParticleStore& s, double rho0, const float* extra0, const float* extra1) {
     static_assert(kExtras == 0 || Layout::flow, "only the Flow layout has spare fields");
     const std::size_t n = s.size() + 1;
     data_.resize(n * Layout::fields);
@@ -84,7 +87,7 @@ class PairRecords {
       if constexpr (Layout::flow) {
         split_hi_lo(s.vx[i], r[Layout::vx_hi], r[Layout::vx_lo]);
         split_hi_lo(s.vy[i], r[Layout::vy_hi], r[Layout::vy_lo]);
-        r[Layout::rho_excess] = s.rho_excess[i];
+        r[Layout::rho_excess] = static_cast<float>(s.rho[i] - rho0);
         r[Layout::p] = s.p[i];
         r[Layout::extra0] = kExtras > 0 ? extra0[i] : 0.0f;
         r[Layout::extra1] = kExtras > 1 ? extra1[i] : 0.0f;
