@@ -20,7 +20,8 @@ mutations=(
   "src/schemes/continuity.hpp|s/return rho_i \* vol_j \* u_dot_gradw;/return -rho_i * vol_j * u_dot_gradw;/|Operators.ContinuityOfLinear*|eq. (8) continuity with its sign flipped"
   "src/schemes/shifting.hpp|s/sx = -coefficient \* gx;/sx = coefficient * gx;/|Operators.Shifting*|eq. (10) shifting towards crowding (sign of x flipped)"
   "src/species/species_rate.hpp|s/diffusivity \* (vol_i + vol_j) \* lap_weight/diffusivity * vol_j * lap_weight/|Operators.DiffusionOperator*|eq. (12) species diffusion with V_j in place of V_i + V_j"
-  "src/kernels/quintic_kernel.hpp|s/return dwdr \* r2 \* inv \* s;/return dwdr * std::sqrt(r2) * inv * s;/|FusedPass.*:Kernel.LaplacianWeight*|fused pass: Laplacian weight with r in place of r^2"
+  "src/kernels/quintic_kernel.hpp|s/return dwdr \* r2 \* inv \* s;/using std::sqrt; return dwdr * sqrt(r2) * inv * s;/|FusedPass.*:Kernel.LaplacianWeight*|fused pass: Laplacian weight with r in place of r^2"
+  "src/schemes/pair_records.hpp|s/lo = static_cast<float>(v - static_cast<double>(hi));/lo = 0.0f;/|FusedPass.*:PairRecords.*|force pass: differences of the state without the records' lo parts"
 )
 
 missed=0
