@@ -160,7 +160,8 @@ constexpr Variant variant_of() {
   return Variant::prescribed;
 }
 
-// The fused force pass alone (momentum, continuity, shifting, species as the scheme needs).
+// The fused force pass alone (momentum, continuity, shifting, species as the scheme needs),
+// the fill of its neighbour records included (pair_records.hpp), as a step runs it.
 template <class S>
 void BM_ForcePass(benchmark::State& state) {
   Fixture& fx = fixture(variant_of<S>(), state.range(0), kPasses);

@@ -148,7 +148,7 @@ struct RunResult {
   double peak_rss_bytes = 0.0;  // largest resident set of the process (all segments)
   // Heap bytes the engine holds for the particles at the end (capacity): the particle arrays,
   // the neighbour lists, the diffusion weights of a split species step (0 if none), the force
-  // pass's neighbour records (0 after the end of the run releases them, as the lists).
+  // pass's neighbour records (schemes/pair_records.hpp).
   struct {
     std::size_t particles = 0, neighbour_lists = 0, diffusion_weights = 0, pair_records = 0;
   } engine_bytes;
