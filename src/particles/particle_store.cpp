@@ -68,8 +68,7 @@ void ParticleStore::resize(std::size_t n) {
 void ParticleStore::set_needs(Needs n) {
   // Free what is switched off, then size what is on (resize skips nothing it visits).
   auto release = [](auto& a) { std::decay_t<decltype(a)>().swap(a); };
-  if (!n.momentum)
-    release(ax), release(ay), release(ax_first), release(ay_first);
+  if (!n.momentum) release(ax), release(ay), release(ax_first), release(ay_first);
   if (!n.continuity) release(drho), release(drho_first);
   if (!n.shifting) release(sx), release(sy), release(sx_first), release(sy_first);
   if (n.species_start) release(dc_first);
