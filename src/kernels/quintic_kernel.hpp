@@ -38,7 +38,7 @@ struct QuinticKernel {
   }
 
   // dW/dr (<= 0). The passes divide by r themselves, sharing one division between several
-  // factors (see interaction_pass.hpp). T = float for the single-precision force pass.
+  // factors (see interaction_pass.hpp). T = float, or eight lanes (simd8.hpp) in the force pass.
   template <class T = double>
   T derivative(T r) const {
     const T q = r * static_cast<T>(inv_h);
