@@ -61,7 +61,7 @@ struct Fixture {
     // The shifting constants depend on the step: the solver sets them at every step.
     phys.shifting.coefficient = c.modern.shift_eps * c.h() * c.h() / dt;
     phys.shifting.max_speed = c.modern.shift_max * dx / dt;
-    // Derived fields (p, vol, rho of the walls) as a real evaluation leaves them.
+    // Derived fields (p, rho of the walls) as a real evaluation leaves them.
     solver.evaluate();
     std::vector<std::uint32_t> order, outside;
     sort(order, outside);

@@ -41,7 +41,7 @@ Rates double_rates(const ParticleStore& s, std::size_t i, const Case& c) {
     if (r2 >= w.support * w.support) continue;
     const double F = w.gradient_factor(std::sqrt(r2)), gx = F * dx, gy = F * dy;
     const double lap = w.laplacian_weight(r2, eta2);
-    const double vj = s.vol[j], ux = s.vx[i] - s.vx[j], uy = s.vy[i] - s.vy[j];
+    const double vj = s.volume(j), ux = s.vx[i] - s.vx[j], uy = s.vy[i] - s.vy[j];
     const double udg = ux * gx + uy * gy;
     const double sp = pressure_gradient_pair(1.0 / s.rho[i], double(s.p[i]), double(s.p[j]), vj);
     const double sv = viscous_pair(mass, four_nu, 1.0 / (s.rho[i] + s.rho[j]), lap);
@@ -52,8 +52,8 @@ Rates double_rates(const ParticleStore& s, std::size_t i, const Case& c) {
     const double ddiff = density_diffusion_pair(dh, vj, s.rho[i] - s.rho[j], lap);
     r.drho += cont + ddiff;
     r.scale_rho += std::fabs(cont) + std::fabs(ddiff);
-    const double cd = species_diffusion_pair(diffusivity, double(s.vol[i]), vj, lap,
-                                             s.c[i] - s.c[j], double(s.diffusion_mask[j]));
+    const double cd = species_diffusion_pair(diffusivity, double(s.volume(i)), vj, lap,
+                                             s.c[i] - s.c[j], double(s.diffusion_mask(j)));
     cdiff += cd;
     cdiff_abs += std::fabs(cd);
     const double dil = species_dilatation_pair(vj, udg);

@@ -40,7 +40,6 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
         static_cast<const void*>(&s.vx), static_cast<const void*>(&s.vy),
         static_cast<const void*>(&s.rho), static_cast<const void*>(&s.c),
         static_cast<const void*>(&s.kind), static_cast<const void*>(&s.p),
-        static_cast<const void*>(&s.vol), static_cast<const void*>(&s.diffusion_mask),
         static_cast<const void*>(&s.fluid_side)})
     EXPECT_EQ(carried.count(a), 1u);
   EXPECT_EQ(fields, carried.size());
@@ -59,10 +58,13 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
       EXPECT_EQ(a[k], static_cast<T>(i)) << "field of value size " << sizeof(T);
     }
   });
-  // The padding particle is reset after the permutation: far away, no volume, no species.
+  // The padding particle is reset after the permutation: far away, a wall (no diffusion, not
+  // sampled by the boundaries), no species.
   EXPECT_GT(s.x[s.size()], 1e11);
-  EXPECT_EQ(s.vol[s.size()], 0.0f);
-  EXPECT_EQ(s.diffusion_mask[s.size()], 0.0f);
+  EXPECT_EQ(s.kind[s.size()], kWallByte);
+  EXPECT_EQ(s.diffusion_mask(s.size()), 0.0f);
+  EXPECT_EQ(s.fluid_side[s.size()], 0.0f);
+  EXPECT_EQ(s.c[s.size()], 0.0);
 }
 
 // The in-place permutation walks each cycle from its leader: random orders (fixed points,

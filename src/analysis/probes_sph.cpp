@@ -13,7 +13,7 @@ ProbeSampler::FlowSample ProbeSampler::flow_sample_at(double x, double y) const 
     // holds the C its particles carried through x = L, a zero-gradient continuation).
     if (particles.kind[j] == kWallByte) return;
     const double rx = x - particles.x[j], ry = y - particles.y[j];
-    const double w = particles.vol[j] * kernel.value(std::sqrt(rx * rx + ry * ry));
+    const double w = particles.volume(j) * kernel.value(std::sqrt(rx * rx + ry * ry));
     num += w * c[j];
     flow += w * particles.vx[j];
     den += w;

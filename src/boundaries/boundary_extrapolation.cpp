@@ -15,7 +15,6 @@ void extrapolate_with(ParticleStore& s, const PassContext& ctx, const Neighbours
   const float* side = s.fluid_side.data();
   const TaitEos eos = ctx.phys.eos;
   const QuinticKernel kernel = ctx.kernel;  // local copies: see interaction_pass.hpp
-  const double mass = s.mass;
   // The outflow buffer's state (p_b, rho0) was set by the density pass before this one
   // (density_passes.hpp, outflow_state): the walls near the outlet sample it.
   // Walls and inlet read only fluid and outlet particles (fluid_side = 1) and write only their
@@ -48,7 +47,6 @@ void extrapolate_with(ParticleStore& s, const PassContext& ctx, const Neighbours
     const double rhow = eos.density(pw);
     s.p[i] = static_cast<float>(pw);
     s.rho[i] = rhow;
-    s.vol[i] = static_cast<float>(mass / rhow);
     if (ki == kWallByte) {
       s.vx[i] = sw > 0.0f ? -double(su) / sw : 0.0;
       s.vy[i] = sw > 0.0f ? -double(sv) / sw : 0.0;

@@ -140,6 +140,7 @@ void RunLoop::sample_outlet() {
 
 void RunLoop::emit_fields() {
   ScopedPhase timer(solver_.timers(), Phase::output);
+  solver_.shed_for_output();
   std::vector<double> pressure_pa;  // freed after the frame: not held between frames
   observer_.on_fields(solver_.frame(pressure_pa));
 }
@@ -163,6 +164,7 @@ void RunLoop::report_progress(double change) {
 
 void RunLoop::checkpoint() {
   ScopedPhase timer(solver_.timers(), Phase::output);
+  solver_.shed_for_output();
   RunCheckpoint cp;
   cp.solver = solver_.snapshot();
   cp.steady = steady_.snapshot();

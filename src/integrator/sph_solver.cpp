@@ -202,7 +202,7 @@ void SphSolver::evaluate_impl(double a_next) {
   if constexpr (S::momentum) {
     if constexpr (!S::summation_density) {
       ScopedPhase timer(timers_, Phase::density);
-      fluid_pressure(store_, phys_.eos, store_.mass);
+      fluid_pressure(store_, phys_.eos);
     }
     ScopedPhase timer(timers_, Phase::boundaries);
     extrapolate_to_boundaries(store_, ctx);
@@ -449,6 +449,11 @@ void SphSolver::release_stepping_memory() {
   pair_records_.release();
   (void)monitor_.release_storage();
   subcycler_.release();
+  trim_heap();
+}
+
+void SphSolver::shed_for_output() {
+  pair_records_.release();
   trim_heap();
 }
 

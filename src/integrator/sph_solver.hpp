@@ -118,6 +118,11 @@ class SphSolver {
   // files does not add HDF5's code and buffers on top of them (perf/README.md, 3.14). The
   // state, the probes' sampler and frame() stay valid; step() refuses afterwards.
   void release_stepping_memory();
+  // Before a frame or a checkpoint is written mid-run: give back what the next pass makes
+  // anew anyway, so that HDF5's code and buffers take its place instead of adding to the
+  // run's peak memory (perf/README.md, 3.21): the pair records, which every pass fills anew.
+  // The run's numbers do not change.
+  void shed_for_output();
   // Recompute the derived fields (density, pressure, volumes) and rates of the current state
   // without advancing: used by tests and benchmarks.
   void evaluate();

@@ -91,7 +91,7 @@ void ParticleStore::keep_first_stage_rates() {
 
 void ParticleStore::reset_padding() {
   const std::size_t k = n_;
-  // Zero in every field (no volume, no species, masks off), then:
+  // Zero in every field (no species, mask off), then:
   for_each_field(*this, [k](auto& a, Role, const char*) { a[k] = {}; });
   x[k] = y[k] = 1e12;  // far beyond any support: W = grad W = 0 for every pair with it
   rho[k] = 1.0;
@@ -112,7 +112,6 @@ void ParticleStore::push_back(double px, double py, double pvx, double pvy, doub
   c[i] = pc;
   set_kind(i, k);
   p[i] = 0.0f;
-  vol[i] = prho > 0 ? static_cast<float>(mass / prho) : 0.0f;
 }
 
 void ParticleStore::permute(std::span<const std::uint32_t> order) {

@@ -1,6 +1,7 @@
 // Structure-of-arrays particle store. The passes take raw arrays of it; no particle objects.
-// One extra "padding" particle lives past the last real one (index size()): far away, with
-// zero volume, so neighbour lists padded with its index contribute nothing.
+// One extra "padding" particle lives past the last real one (index size()): so far away that
+// every kernel term of a pair with it is zero, and a wall (no diffusion, not sampled by the
+// boundaries), so neighbour lists padded with its index contribute nothing.
 #pragma once
 
 #include <array>
@@ -24,14 +25,22 @@ struct ParticleStore {
   // evaluation from the double state and only ever enter it multiplied by dt, so their
   // rounding (6e-8 relative) stays far below the discretisation error (perf/README.md,
   // "float storage"); halving them saves 40 bytes per particle.
-  std::vector<float> p;    // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
-  std::vector<float> vol;  // V = m / rho [mm^2]
+  std::vector<float> p;  // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
+  // V = m / rho [mm^2], in single precision as the passes use it. Computed where it is read,
+  // not stored: every pass that sets rho would set V with it (4 bytes per particle).
+  float volume(std::size_t i) const { return static_cast<float>(mass / rho[i]); }
   // 1 where the particle exchanges species by diffusion: fluid and the inflow buffer (the
   // Dirichlet inlet, C = c_in). 0 for walls (no flux through them) and the outflow buffer
   // (zero diffusive flux through the outlet plane: the zero-gradient outlet of
   // docs/benchmark.md, section 1, held exactly because the pair fluxes are antisymmetric).
-  std::vector<float> diffusion_mask;
-  std::vector<float> fluid_side;  // 1 for fluid and outlet particles (what boundaries sample)
+  // From kind where it is read (the pair records carry it into the force pass).
+  static float diffusion_mask_of(std::uint8_t k) {
+    return (k == kFluidByte || k == kInletByte) ? 1.0f : 0.0f;
+  }
+  float diffusion_mask(std::size_t i) const { return diffusion_mask_of(kind[i]); }
+  // 1 for fluid and outlet particles (what boundaries sample). Stored, unlike the diffusion
+  // mask: the boundary pass gathers it, and g++ does not vectorise a gather of kind bytes.
+  std::vector<float> fluid_side;
   // Rates of one evaluation (fluid particles only).
   std::vector<float> ax, ay, drho, dc;
   std::vector<float> sx, sy;  // shifting velocity du (modern scheme), eq. (10)
@@ -110,10 +119,10 @@ struct ParticleStore {
     static constexpr std::array<const char*, kMaxMore> more_c = {"c_1", "c_2", "c_3"};
     static constexpr std::array<const char*, kMaxMore> more_dc = {"dc_1", "dc_2", "dc_3"};
     for (int e = 0; e < s.needs_.more_species; ++e) visit(s.c_more[e], state, more_c[e]);
-    // p and V are recomputed every evaluation but read before that by particles that have
-    // just entered the fluid: kept.
-    visit(s.p, state, "p"), visit(s.vol, state, "vol");
-    visit(s.diffusion_mask, derived, "diffusion_mask"), visit(s.fluid_side, derived, "fluid_side");
+    // p is recomputed every evaluation but read before that by particles that have just
+    // entered the fluid: kept.
+    visit(s.p, state, "p");
+    visit(s.fluid_side, derived, "fluid_side");
     visit(s.dc, per_step, "dc");
     for (int e = 0; e < s.needs_.more_species; ++e) visit(s.dc_more[e], per_step, more_dc[e]);
     if (s.needs_.momentum) visit(s.ax, per_step, "ax"), visit(s.ay, per_step, "ay");
@@ -136,10 +145,9 @@ struct ParticleStore {
       for (int e = 0; e < s.needs_.more_species; ++e) visit(s.dc_more[e], s.dc_more_first[e]);
     }
   }
-  // Keep the masks in step with kind[i] after a kind change.
+  // Keep the mask in step with kind[i] after a kind change.
   void set_kind(std::size_t i, Kind k) {
     kind[i] = static_cast<std::uint8_t>(k);
-    diffusion_mask[i] = (k == Kind::fluid || k == Kind::inlet) ? 1.0f : 0.0f;
     fluid_side[i] = (k == Kind::fluid || k == Kind::outlet) ? 1.0f : 0.0f;
   }
 

@@ -11,7 +11,7 @@
 namespace adrsph {
 
 // Conventional scheme: rho_i = m sum_j W_ij (self included), eq. (3) with W for the printed
-// grad W (docs/benchmark.md, section 2), then p_i, V_i and rho_i - rho0 as fluid_pressure()
+// grad W (docs/benchmark.md, section 2), then p_i as fluid_pressure()
 // does, for the fluid particles; the outflow buffer gets its fixed state.
 // `predicted`: the sums the previous force pass took at these very positions (pass_context.hpp,
 // DensityPrediction), used where present (not NaN) instead of a neighbour loop: the same sums
@@ -27,25 +27,23 @@ template <class EachParticle>
 void summation_density(ParticleStore& s, const PassContext& ctx, const float* predicted,
                        EachParticle&& each);
 
-// p_i = Tait(rho_i) (+ p_b), eq. (2) and V_i = m / rho_i of the fluid particles; the outflow
-// buffer gets its fixed state
-// (outflow_state). The boundary pass sets walls and inflow buffer.
-void fluid_pressure(ParticleStore& s, const TaitEos& eos, double mass);
+// p_i = Tait(rho_i) (+ p_b), eq. (2) of the fluid particles; the outflow buffer gets its
+// fixed state (outflow_state). The boundary pass sets walls and inflow buffer. (V_i = m / rho_i
+// is computed where it is read: ParticleStore::volume.)
+void fluid_pressure(ParticleStore& s, const TaitEos& eos);
 
-// rho_i and what follows from it: p_i = Tait(rho_i) (+ p_b), eq. (2) and V_i = m / rho_i.
+// rho_i and what follows from it: p_i = Tait(rho_i) (+ p_b), eq. (2).
 // The one place a density passes on to them.
-inline void set_density_state(ParticleStore& s, std::size_t i, double rho, const TaitEos& eos,
-                              double mass) {
+inline void set_density_state(ParticleStore& s, std::size_t i, double rho, const TaitEos& eos) {
   s.rho[i] = rho;
   s.p[i] = static_cast<float>(eos.pressure(rho));
-  s.vol[i] = static_cast<float>(mass / rho);
 }
 
 // The outflow buffer's state: the rest density rho0, so p = p_b exactly, the reference the
 // walls near the outlet sample (boundary_extrapolation.cpp). Both density passes set it in
 // their loop over the store, before the boundary pass reads it.
-inline void outflow_state(ParticleStore& s, std::size_t i, const TaitEos& eos, double mass) {
-  set_density_state(s, i, eos.rho0, eos, mass);
+inline void outflow_state(ParticleStore& s, std::size_t i, const TaitEos& eos) {
+  set_density_state(s, i, eos.rho0, eos);
 }
 
 namespace detail {
@@ -83,13 +81,13 @@ void summation_density_with(ParticleStore& s, const PassContext& ctx, const floa
   for (std::size_t i = 0; i < n; ++i) {
     each(i);
     const std::uint8_t k = s.kind[i];
-    if (k == kOutletByte) outflow_state(s, i, eos, mass);
+    if (k == kOutletByte) outflow_state(s, i, eos);
     if (k != kFluidByte) continue;
     // A prediction is missing (NaN) for a particle that was in the inflow buffer then.
     const float sum = predicted && !std::isnan(predicted[i])
                           ? predicted[i]
                           : kernel_sum(i, x, y, form, ctx.neighbours, kernel);
-    set_density_state(s, i, mass * (self + static_cast<double>(sum)), eos, mass);  // eq. (3)
+    set_density_state(s, i, mass * (self + static_cast<double>(sum)), eos);  // eq. (3)
   }
 }
 }  // namespace detail

@@ -20,6 +20,7 @@
 //   Network: then c_hi c_lo of each further species (ParticleStore::c_more), two spare.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <new>
 #include <vector>
@@ -74,6 +75,13 @@ class PairRecords {
   void fill(const ParticleStore& s, double rho0, const float* extra0, const float* extra1) {
     static_assert(kExtras == 0 || Layout::flow, "only the Flow layout has spare fields");
     const std::size_t n = s.size() + 1;
+    // Grown as the store grows (~3% headroom, not std::vector's doubling), and to the size
+    // they had before a release() in mid-run: the particle count varies by a few tens as the
+    // buffers feed and drain, and refilling at the smaller count would double the block at
+    // the next larger one.
+    if (n * Layout::fields > data_.capacity())
+      data_.reserve(std::max(ParticleStore::grown_capacity(n) * Layout::fields, kept_capacity_));
+    kept_capacity_ = 0;
     data_.resize(n * Layout::fields);
     float* out = data_.data();
     [[maybe_unused]] const int more = s.needs().more_species;
@@ -83,8 +91,8 @@ class PairRecords {
       split_hi_lo(s.x[i], r[Layout::x_hi], r[Layout::x_lo]);
       split_hi_lo(s.y[i], r[Layout::y_hi], r[Layout::y_lo]);
       split_hi_lo(s.c[i], r[Layout::c_hi], r[Layout::c_lo]);
-      r[Layout::vol] = s.vol[i];
-      r[Layout::diffusion_mask] = s.diffusion_mask[i];
+      r[Layout::vol] = static_cast<float>(s.mass / s.rho[i]);  // ParticleStore::volume
+      r[Layout::diffusion_mask] = ParticleStore::diffusion_mask_of(s.kind[i]);
       if constexpr (Layout::flow) {
         split_hi_lo(s.vx[i], r[Layout::vx_hi], r[Layout::vx_lo]);
         split_hi_lo(s.vy[i], r[Layout::vy_hi], r[Layout::vy_lo]);
@@ -106,11 +114,14 @@ class PairRecords {
   std::size_t bytes() const {
     return data_.capacity() * sizeof(float);
   }
+  // Give the records back; the next fill takes the capacity they had.
   void release() {
+    kept_capacity_ = data_.capacity();
     std::vector<float, CacheLineAllocator<float>>().swap(data_);
   }
 
  private:
+  std::size_t kept_capacity_ = 0;
   std::vector<float, CacheLineAllocator<float>> data_;
 };
 

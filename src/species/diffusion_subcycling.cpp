@@ -16,15 +16,16 @@ void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const 
   const std::size_t n = s.size();
   const double* x = s.x.data();
   const double* y = s.y.data();
-  const float* vol = s.vol.data();
-  const float* dmask = s.diffusion_mask.data();
+  const double* rho = s.rho.data();
+  const std::uint8_t* kind = s.kind.data();
+  const double mass = s.mass;
   const double eta2 = ctx.phys.eta2, diffusivity = ctx.phys.max_diffusivity;
   const double wall_y = ctx.phys.wall_image_y;
   const QuinticKernel kernel = ctx.kernel;  // local copy: see interaction_pass.hpp
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     if (s.kind[i] != kFluidByte) continue;
-    const double xi = x[i], yi = y[i], voli = vol[i];
+    const double xi = x[i], yi = y[i], voli = s.volume(i);
     std::uint32_t row_buffer[NeighbourList::kRowBuffer];
     const NeighbourList::Row row = ctx.neighbours.row_of(form, i, row_buffer);
     float* wi = w + row.first;  // a weight per stored entry (neighbour_list.hpp: which are stored)
@@ -38,8 +39,9 @@ void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const 
       if constexpr (Images)
         lap_weight += kernel.laplacian_weight(wall_image_r2(dx, yi, y[j], wall_y), eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
-      wi[k] = static_cast<float>(
-          species_diffusion_pair<double>(diffusivity, voli, vol[j], lap_weight, 1.0, dmask[j]));
+      const double volj = static_cast<float>(mass / rho[j]);  // ParticleStore::volume
+      wi[k] = static_cast<float>(species_diffusion_pair<double>(
+          diffusivity, voli, volj, lap_weight, 1.0, ParticleStore::diffusion_mask_of(kind[j])));
     }
   }
 }
@@ -68,7 +70,7 @@ double rates_with(const ParticleStore& s, const PassContext& ctx, const Neighbou
         const std::uint8_t kj = s.kind[j];
         if (kj == kInletByte || kj == kOutletByte) from_buffers += wi[k] * (ci - cc[j]);
       }
-      exchange += s.vol[i] * factor * from_buffers;
+      exchange += s.volume(i) * factor * from_buffers;
     }
   }
   return exchange;

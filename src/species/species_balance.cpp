@@ -25,10 +25,10 @@ double exchange_rate_with(const ParticleStore& s, const PassContext& ctx, const 
       if (ctx.phys.wall_image_y > 0.0)  // the buffer neighbour's image (species/wall_images.hpp)
         lap_weight += ctx.kernel.laplacian_weight(
             wall_image_r2(dx, s.y[i], s.y[j], ctx.phys.wall_image_y), eta2);
-      rate += species_diffusion_pair<double>(diffusivity, s.vol[i], s.vol[j], lap_weight,
-                                             c[i] - c[j], s.diffusion_mask[j]);
+      rate += species_diffusion_pair<double>(diffusivity, s.volume(i), s.volume(j), lap_weight,
+                                             c[i] - c[j], s.diffusion_mask(j));
     }
-    total += s.vol[i] * rate;
+    total += s.volume(i) * rate;
   }
   return total;
 }
