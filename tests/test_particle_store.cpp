@@ -35,12 +35,11 @@ TEST(ParticleStore, PermuteCarriesEveryListedField) {
   ParticleStore::for_each_field(s, [&](auto& a, ParticleStore::Role role, const char*) {
     if (ParticleStore::carried(role)) carried.insert(&a);
   });
-  for (const void* a :
-       {static_cast<const void*>(&s.x), static_cast<const void*>(&s.y),
-        static_cast<const void*>(&s.vx), static_cast<const void*>(&s.vy),
-        static_cast<const void*>(&s.rho), static_cast<const void*>(&s.c),
-        static_cast<const void*>(&s.kind), static_cast<const void*>(&s.p),
-        static_cast<const void*>(&s.fluid_side)})
+  for (const void* a : {static_cast<const void*>(&s.x), static_cast<const void*>(&s.y),
+                        static_cast<const void*>(&s.vx), static_cast<const void*>(&s.vy),
+                        static_cast<const void*>(&s.rho), static_cast<const void*>(&s.c),
+                        static_cast<const void*>(&s.kind), static_cast<const void*>(&s.p),
+                        static_cast<const void*>(&s.fluid_side)})
     EXPECT_EQ(carried.count(a), 1u);
   EXPECT_EQ(fields, carried.size());
   // Keep every other particle, in reverse order.
