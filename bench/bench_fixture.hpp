@@ -58,9 +58,7 @@ struct Fixture {
         grid(solver.grid()),
         cutoff(solver.cutoff()) {
     dt = solver.dt_limits().chosen;
-    // The shifting constants depend on the step: the solver sets them at every step.
-    phys.shifting.coefficient = c.modern.shift_eps * c.h() * c.h() / dt;
-    phys.shifting.max_speed = c.modern.shift_max * dx / dt;
+    phys.set_step(c, dt);  // the shifting constants, as the solver sets them at every step
     // Derived fields (p, rho of the walls) as a real evaluation leaves them.
     solver.evaluate();
     std::vector<std::uint32_t> order, outside;

@@ -131,10 +131,9 @@ TEST(FusedPass, BothFormsOfTheListGiveTheSameValues) {
   ASSERT_FALSE(narrow.wide());
   ASSERT_TRUE(wide.wide());
   PhysicsConstants phys = solver.physics();
-  phys.wall_image_y = c.geometry.half_width;    // the wall-image pass runs too
-  const double dt = solver.dt_limits().chosen;  // shifting as a step sets it (sph_solver.cpp)
-  phys.shifting.coefficient = c.modern.shift_eps * c.h() * c.h() / dt;
-  phys.shifting.max_speed = c.modern.shift_max * c.particles.dx / dt;
+  phys.wall_image_y = c.geometry.half_width;  // the wall-image pass runs too
+  const double dt = solver.dt_limits().chosen;
+  phys.set_step(c, dt);  // shifting as a step sets it
   struct Values {
     std::vector<float> ax, ay, drho, dc, sx, sy, p_wall;
     std::vector<double> rho_summed, c_subcycled;

@@ -104,9 +104,7 @@ Rates rates_with(const SphSolver& solver, const NeighbourList& list, const Parti
                  const Case& c) {
   ParticleStore t = state;
   PhysicsConstants phys = solver.physics();
-  const double dt = solver.dt_limits().chosen;
-  phys.shifting.coefficient = c.modern.shift_eps * c.h() * c.h() / dt;
-  phys.shifting.max_speed = c.modern.shift_max * c.particles.dx / dt;
+  phys.set_step(c, solver.dt_limits().chosen);
   PassContext ctx{solver.kernel(), list, phys};
   const std::size_t n = t.size();
   std::vector<float> next_sum(n + 1, 0.0f), ddx(n + 1, 0.0f), ddy(n + 1, 0.0f);

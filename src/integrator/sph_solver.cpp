@@ -300,8 +300,7 @@ void SphSolver::advance(double dt) {
 template <class S, bool Ale, bool Split, bool Net>
 bool SphSolver::step_impl(double dt) {
   if constexpr (S::shifting) {
-    phys_.shifting.coefficient = case_.modern.shift_eps * kernel_.h * kernel_.h / dt;
-    phys_.shifting.max_speed = case_.modern.shift_max * case_.particles.dx / dt;
+    phys_.set_step(case_, dt);
   }
   // The inlet value of a feed that varies: its mean over the step, so that the buffer injects
   // the feed's amount whatever the step (second order in time for a smooth feed, like the

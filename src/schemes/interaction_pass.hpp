@@ -171,7 +171,9 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const float
     }
     if constexpr (Scheme::continuity) s.drho[i] = sum(drho);
     if constexpr (kPredict) next.sum[i] = sum(wsum);
-    double dci = double(sum(cdiff)) + ci_d * double(sum(cdil));
+    const double dilatation =
+        sum(cdil);  // times C_i: the -C div u term, the same for every species
+    double dci = double(sum(cdiff)) + ci_d * dilatation;
     if constexpr (Scheme::shifting) {
       double sxi, syi;
       ph.shifting(sum(gx), sum(gy), sxi, syi);
@@ -185,7 +187,7 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const float
       const double ci_more[3] = {more > 0 ? s.c_more[0][i] : 0.0, more > 1 ? s.c_more[1][i] : 0.0,
                                  more > 2 ? s.c_more[2][i] : 0.0};
       for (int e = 0; e < more; ++e)
-        s.dc_more[e][i] = static_cast<float>(double(sums[e]) + ci_more[e] * double(sum(cdil)));
+        s.dc_more[e][i] = static_cast<float>(double(sums[e]) + ci_more[e] * dilatation);
     }
   }
 }

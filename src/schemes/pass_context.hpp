@@ -27,7 +27,15 @@ struct PhysicsConstants {
   // Body force per mass along x on the fluid [mm/s^2] (fluid.driving = "body_force"), 0 else.
   double body_force_x = 0.0;
   TaitEos eos;
-  ShiftingVelocity shifting;  // set per step (depends on dt)
+  ShiftingVelocity shifting;  // set per step (depends on dt): set_step
+
+  // The constants that depend on the step dt: the shifting coefficient eps h^2 / dt and its
+  // cap shift_max dx / dt (eq. (10)). The solver sets them at every step; a test or benchmark
+  // that runs a pass on its own sets them for the step it imitates.
+  void set_step(const Case& c, double dt) {
+    shifting.coefficient = c.modern.shift_eps * c.h() * c.h() / dt;
+    shifting.max_speed = c.modern.shift_max * c.particles.dx / dt;
+  }
 };
 
 // Conventional scheme: the force pass also sums the kernel at the positions the integrator
