@@ -55,8 +55,9 @@ class NamedArray {
 };
 
 // Particle arrays by name, in store order: the particle store's `state` fields (its field
-// list, src/particles/particle_store.hpp: x, y, vx, vy, rho, c, kind, p), so a new state
-// field is checkpointed without an edit here or in the file format.
+// list, src/particles/particle_store.hpp: x, y, vx, vy, rho, c, kind, p and the optional ones
+// of the run's scheme), so a new state field is checkpointed without an edit here or in the
+// file format.
 template <class T>
 using NamedArrays = std::vector<NamedArray<T>>;
 struct ParticleArrays {

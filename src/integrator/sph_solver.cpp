@@ -97,7 +97,8 @@ void SphSolver::bind(bool split) {
                    : &SphSolver::evaluate_at_rest<S, Ale, false, Net>;
   // The arrays S uses, and one set per species of the network; no more. Sub-cycled diffusion
   // changes C after the transport: then C's start value is kept, not its first-stage rate.
-  store_.set_needs({S::momentum, S::continuity, S::shifting, case_.species_count() - 1, split});
+  store_.set_needs({S::momentum, S::continuity, S::shifting, case_.species_count() - 1, split,
+                    S::summation_density});
 }
 
 std::size_t SphSolver::fluid_count() const {
@@ -140,7 +141,12 @@ void SphSolver::rebuild() {
                    std::move(order));
   }
   moved_abs_ = 0.0;
-  density_predicted_ = false;  // indices changed
+  // density_predicted_ stays: the predictions moved with their particles, and a particle fed
+  // into the inflow buffer has none (NaN). The re-sort follows a step that may have moved a
+  // pair up to one step's relative motion inside the support past the list's skin (the
+  // monitor's test is taken after the step); such a pair enters the kernel sum at the very
+  // edge of the support, where W ~ (3 - q)^5 is below the float rounding of the sum
+  // (Flow.ConventionalPredictedDensityIsTheSummationDensity).
   ++rebuilds_;
   if (!list_.one_pass()) ++two_pass_builds_;
 }
@@ -188,16 +194,17 @@ void SphSolver::evaluate_impl(double a_next) {
   if constexpr (S::summation_density) {
     ScopedPhase timer(timers_, Phase::density);
     const std::size_t n = store_.size();
-    for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) v->resize(n + 1);
+    for (auto* v : {&next_dx_, &next_dy_}) v->resize(n + 1);
     next_dx_[n] = next_dy_[n] = 0.0f;  // the padding particle
     // The displacements in the same loop as the densities: one pass over the store.
-    const float* predicted = density_predicted_ ? density_sum_.data() : nullptr;
+    float* sums = store_.predicted_density.data();
+    const float* predicted = density_predicted_ ? sums : nullptr;
     if (std::isnan(a_next))  // kWrittenByFirstStage
       summation_density(store_, ctx, predicted, [](std::size_t) {});
     else
       summation_density(store_, ctx, predicted,
                         NextDisplacement{store_, next_dx_.data(), next_dy_.data(), a_next});
-    ctx.next_density = {density_sum_.data(), next_dx_.data(), next_dy_.data()};
+    ctx.next_density = {sums, next_dx_.data(), next_dy_.data()};
   }
   if constexpr (S::momentum) {
     if constexpr (!S::summation_density) {
@@ -442,7 +449,7 @@ bool SphSolver::step(double dt) {
 
 void SphSolver::release_stepping_memory() {
   released_ = true;
-  for (auto* v : {&density_sum_, &next_dx_, &next_dy_}) std::vector<float>().swap(*v);
+  for (auto* v : {&next_dx_, &next_dy_}) std::vector<float>().swap(*v);
   density_predicted_ = false;
   list_.release();
   pair_records_.release();

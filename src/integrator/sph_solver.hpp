@@ -172,10 +172,10 @@ class SphSolver {
   // from now on carry the feed's mean over [t, t + dt] (its value at t when dt = 0).
   void apply_feed(double t, double dt);
   bool report_lost();
-  // The conventional scheme's summation density at the positions of the next evaluation,
-  // taken by the force pass (pass_context.hpp). Valid until the particles are re-sorted or a
-  // step is undone.
-  std::vector<float> density_sum_;
+  // The conventional scheme's summation density at the positions of the next evaluation is
+  // taken by the force pass (pass_context.hpp) into the store's predicted_density, which a
+  // re-sort carries along. It is valid (density_predicted_) from one evaluation to the next of
+  // a step that goes on, not after a step is undone or a snapshot restored.
   std::vector<float> next_dx_, next_dy_;  // displacement of the coming stage (walls 0)
   bool density_predicted_ = false;
   bool predict_density_ = true;

@@ -71,6 +71,9 @@ void SphSolver::restore(const SolverSnapshot& s) {
   // The particles were saved in cell order right after a rebuild: the stable sort keeps
   // them in place and the lists come out as they were.
   rebuild();
+  // Snapshots are taken after a step, which leaves the next densities predicted (the
+  // conventional scheme): the continued run takes them as the uninterrupted one does.
+  density_predicted_ = store_.needs().predicted_density && predict_density_ && s.steps > 0;
   t_ = s.t;
   steps_ = s.steps;
   lost_ = s.lost;

@@ -141,11 +141,12 @@ SolverSnapshot read_solver(hid_t root, const std::string& file) {
   const char* grp = "solver";
   SolverSnapshot s;
   // The particle arrays the store's field list names as state (checkpoint.hpp).
-  // Its list with every species array: those of species a run does not have are not in the
-  // file (a case of one species writes none).
+  // Its list with every optional array: those a run does not have are not in the file (a
+  // case of one species writes no c_1, a modern-scheme run no predicted_density).
   ParticleStore layout;  // empty: only its field list is read
   ParticleStore::Needs all;
   all.more_species = ParticleStore::kMaxMore;
+  all.predicted_density = true;
   layout.set_needs(all);
   ParticleStore empty;
   ParticleStore::for_each_field(layout, [&](auto& a, ParticleStore::Role role, const char* name) {

@@ -1,6 +1,7 @@
 #include "particles/particle_store.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <type_traits>
 
 namespace adrsph {
@@ -73,6 +74,7 @@ void ParticleStore::set_needs(Needs n) {
   if (!n.shifting) release(sx), release(sy), release(sx_first), release(sy_first);
   if (n.species_start) release(dc_first);
   if (!n.species_start) release(c_start);
+  if (!n.predicted_density) release(predicted_density);
   for (int e = 0; e < kMaxMore; ++e) {
     const bool used = e < n.more_species;
     if (!used) release(c_more[e]), release(dc_more[e]);
@@ -112,6 +114,7 @@ void ParticleStore::push_back(double px, double py, double pvx, double pvy, doub
   c[i] = pc;
   set_kind(i, k);
   p[i] = 0.0f;
+  if (needs_.predicted_density) predicted_density[i] = std::numeric_limits<float>::quiet_NaN();
 }
 
 void ParticleStore::permute(std::span<const std::uint32_t> order) {

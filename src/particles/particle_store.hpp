@@ -48,6 +48,11 @@ struct ParticleStore {
   // back to the start state, u0 = u_half - dt/2 f0: src/integrator/midpoint.hpp). They are
   // the arrays above of the first evaluation, swapped in (keep_first_stage_rates): no copy.
   std::vector<float> ax_first, ay_first, drho_first, dc_first, sx_first, sy_first;
+  // Conventional scheme: sum_j W_ij at the particle's position at the end of the step, which
+  // the force pass takes from the same neighbour walk (pass_context.hpp, DensityPrediction);
+  // NaN where none was taken (buffers). It follows its particle through a re-sort, so the
+  // step after a rebuild needs no summation pass of its own either (SphSolver::rebuild).
+  std::vector<float> predicted_density;
   // C at the start of the step, when sub-cycled diffusion changes it after the transport
   // (Needs::species_start): the rates alone cannot undo that step.
   std::vector<double> c_start;
@@ -65,11 +70,12 @@ struct ParticleStore {
   // Which optional arrays the scheme writes and reads (scheme_traits.hpp): the others stay
   // empty. Set before the store is first sized (set_needs() resizes what it switches on).
   struct Needs {
-    bool momentum = true;        // ax, ay and their first-stage copies
-    bool continuity = true;      // drho and drho_first
-    bool shifting = true;        // sx, sy and their first-stage copies
-    int more_species = 0;        // c_more, dc_more and their first-stage/start arrays in use
-    bool species_start = false;  // c_start (c_more_start) instead of dc_first (dc_more_first)
+    bool momentum = true;            // ax, ay and their first-stage copies
+    bool continuity = true;          // drho and drho_first
+    bool shifting = true;            // sx, sy and their first-stage copies
+    int more_species = 0;            // c_more, dc_more and their first-stage/start arrays in use
+    bool species_start = false;      // c_start (c_more_start) instead of dc_first (dc_more_first)
+    bool predicted_density = false;  // predicted_density (the conventional scheme)
   };
   void set_needs(Needs n);
   const Needs& needs() const { return needs_; }
@@ -105,7 +111,7 @@ struct ParticleStore {
   // reserve, resize, bytes, permute and the checkpoint (snapshot, restore and the file's
   // datasets, which take these names) are derived from it, so a new field is one line here.
   //   state     follows its particle through a re-sort and is kept in checkpoints;
-  //   derived   follows its particle, and is set again from the state (the masks, from kind);
+  //   derived   follows its particle, and is set again from the state (the mask, from kind);
   //   per_step  rewritten every evaluation or step before it is read: a re-sort only sizes it.
   // Arrays of needs switched off are not visited: they stay empty.
   enum class Role { state, derived, per_step };
@@ -123,6 +129,9 @@ struct ParticleStore {
     // entered the fluid: kept.
     visit(s.p, state, "p");
     visit(s.fluid_side, derived, "fluid_side");
+    // Kept in checkpoints so that a continued run takes the densities an uninterrupted one
+    // takes (SphSolver::restore).
+    if (s.needs_.predicted_density) visit(s.predicted_density, state, "predicted_density");
     visit(s.dc, per_step, "dc");
     for (int e = 0; e < s.needs_.more_species; ++e) visit(s.dc_more[e], per_step, more_dc[e]);
     if (s.needs_.momentum) visit(s.ax, per_step, "ax"), visit(s.ay, per_step, "ay");

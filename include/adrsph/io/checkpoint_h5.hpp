@@ -3,7 +3,8 @@
 //   /case     uint8 datasets case_text (the case file as it was read), case_file (its path),
 //             overrides (the --set values, one per line); attribute threads
 //   /solver   the particle store's state arrays under their names in its field list
-//             (x, y, vx, vy, rho, c double; p float; kind uint8), inflow_row_tail;
+//             (x, y, vx, vy, rho, c double; p float; kind uint8; a network's c_1 ...;
+//             the conventional scheme's predicted_density float), inflow_row_tail;
 //             counters and the species ledger as attributes; phase_seconds
 //   /run      steady-test samples, history, average window, check clock, wall times, warm
 //             start, restarts, peak RSS
