@@ -185,6 +185,33 @@ void expect_lanes_agree(Scheme scheme, const char* name) {
   EXPECT_GT(field_difference(a.dc, std::vector<float>(a.dc.size(), 0.0f), s), 0.0);
 }
 
+// The fill takes V = m / rho and the diffusion mask from the state, which does not store them:
+// each record holds V of its particle's density and the mask of its kind (1 for fluid and the
+// inflow buffer, 0 for walls and the outflow buffer), the padding particle's included.
+TEST(PairRecords, FillTakesVolumeFromDensityAndMaskFromKind) {
+  const Case c = testing::short_channel(Scheme::modern, Flow::wcsph, 5.0);
+  SphSolver solver(c);
+  const double dt = solver.dt_limits().chosen;
+  for (int k = 0; k < 20; ++k) ASSERT_TRUE(solver.step(dt)) << solver.failure();
+  const ParticleStore& s = solver.particles();
+  using L = RecordLayout<true, false>;
+  PairRecords records;
+  records.fill<L, 0>(s, solver.physics().eos.rho0, nullptr, nullptr);
+  std::array<int, 4> seen{};  // per kind
+  std::size_t wrong_volume = 0, wrong_mask = 0;
+  for (std::size_t i = 0; i <= s.size(); ++i) {
+    const float* r = records.data() + i * L::fields;
+    const std::uint8_t k = s.kind[i];
+    ++seen.at(k);
+    wrong_volume += r[L::vol] != static_cast<float>(s.mass / s.rho[i]);
+    const float mask = (k == kFluidByte || k == kInletByte) ? 1.0f : 0.0f;
+    wrong_mask += r[L::diffusion_mask] != mask;
+  }
+  for (int k = 0; k < 4; ++k) EXPECT_GT(seen[k], 0) << "no particle of kind " << k;
+  EXPECT_EQ(wrong_volume, 0u);
+  EXPECT_EQ(wrong_mask, 0u);
+}
+
 TEST(PairRecords, AvxLanesMatchPortableLanesForEveryScheme) {
   expect_lanes_agree<ModernScheme, false>(Scheme::modern, "modern");
   expect_lanes_agree<ModernScheme, true>(Scheme::modern, "modern");
