@@ -123,7 +123,7 @@ class SphSolver {
   // run's peak memory (perf/README.md, 3.21): the pair records, which every pass fills anew.
   // The run's numbers do not change.
   void shed_for_output();
-  // Recompute the derived fields (density, pressure, volumes) and rates of the current state
+  // Recompute the derived fields (density, pressure) and rates of the current state
   // without advancing: used by tests and benchmarks.
   void evaluate();
   // Conventional scheme: take the next summation density in the force pass (default) or in

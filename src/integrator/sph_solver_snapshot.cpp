@@ -65,7 +65,7 @@ void SphSolver::restore(const SolverSnapshot& s) {
   for (std::size_t i = 0; i < n; ++i) {
     if (store_.kind[i] > kOutletByte)
       throw std::invalid_argument("checkpoint particle kind out of range");
-    store_.set_kind(i, static_cast<Kind>(store_.kind[i]));  // the derived masks
+    store_.set_kind(i, static_cast<Kind>(store_.kind[i]));  // the derived mask
     if (store_.needs().shifting) store_.sx[i] = store_.sy[i] = 0.0f;
   }
   // The particles were saved in cell order right after a rebuild: the stable sort keeps
