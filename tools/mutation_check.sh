@@ -22,6 +22,7 @@ mutations=(
   "src/species/species_rate.hpp|s/diffusivity \* (vol_i + vol_j) \* lap_weight/diffusivity * vol_j * lap_weight/|Operators.DiffusionOperator*|eq. (12) species diffusion with V_j in place of V_i + V_j"
   "src/kernels/quintic_kernel.hpp|s/return dwdr \* r2 \* inv \* s;/using std::sqrt; return dwdr * sqrt(r2) * inv * s;/|FusedPass.*:Kernel.LaplacianWeight*|fused pass: Laplacian weight with r in place of r^2"
   "src/schemes/pair_records.hpp|s/lo = static_cast<float>(v - static_cast<double>(hi));/lo = 0.0f;/|FusedPass.*:PairRecords.*|force pass: differences of the state without the records' lo parts"
+  "src/particles/particle_store.hpp|s/k == kInletByte) ? 1.0f/k != kWallByte) ? 1.0f/|PairRecords.*:Flow.*|diffusion mask taken from kind: the outflow buffer diffusing"
 )
 
 missed=0
