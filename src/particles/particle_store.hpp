@@ -28,7 +28,8 @@ struct ParticleStore {
   std::vector<float> p;  // pressure [kg/m^3 mm^2/s^2 = 1e-6 Pa]
   // V = m / rho [mm^2], in single precision as the passes use it. Computed where it is read,
   // not stored: every pass that sets rho would set V with it (4 bytes per particle).
-  float volume(std::size_t i) const { return static_cast<float>(mass / rho[i]); }
+  static float volume_of(double mass, double rho) { return static_cast<float>(mass / rho); }
+  float volume(std::size_t i) const { return volume_of(mass, rho[i]); }
   // 1 where the particle exchanges species by diffusion: fluid and the inflow buffer (the
   // Dirichlet inlet, C = c_in). 0 for walls (no flux through them) and the outflow buffer
   // (zero diffusive flux through the outlet plane: the zero-gradient outlet of

@@ -171,8 +171,8 @@ void interaction_pass_with(ParticleStore& s, const PassContext& ctx, const float
     }
     if constexpr (Scheme::continuity) s.drho[i] = sum(drho);
     if constexpr (kPredict) next.sum[i] = sum(wsum);
-    const double dilatation =
-        sum(cdil);  // times C_i: the -C div u term, the same for every species
+    // Times C_i, the -C div u term: the same sum for every species.
+    const double dilatation = sum(cdil);
     double dci = double(sum(cdiff)) + ci_d * dilatation;
     if constexpr (Scheme::shifting) {
       double sxi, syi;

@@ -91,7 +91,7 @@ class PairRecords {
       split_hi_lo(s.x[i], r[Layout::x_hi], r[Layout::x_lo]);
       split_hi_lo(s.y[i], r[Layout::y_hi], r[Layout::y_lo]);
       split_hi_lo(s.c[i], r[Layout::c_hi], r[Layout::c_lo]);
-      r[Layout::vol] = static_cast<float>(s.mass / s.rho[i]);  // ParticleStore::volume
+      r[Layout::vol] = s.volume(i);
       r[Layout::diffusion_mask] = ParticleStore::diffusion_mask_of(s.kind[i]);
       if constexpr (Layout::flow) {
         split_hi_lo(s.vx[i], r[Layout::vx_hi], r[Layout::vx_lo]);

@@ -39,7 +39,7 @@ void compute_weights_with(const ParticleStore& s, const PassContext& ctx, const 
       if constexpr (Images)
         lap_weight += kernel.laplacian_weight(wall_image_r2(dx, yi, y[j], wall_y), eta2);
       // species_diffusion_pair(D, V_i, V_j, lap_weight, c_ij, mask) = w_ij (c_i - c_j)
-      const double volj = static_cast<float>(mass / rho[j]);  // ParticleStore::volume
+      const double volj = ParticleStore::volume_of(mass, rho[j]);
       wi[k] = static_cast<float>(species_diffusion_pair<double>(
           diffusivity, voli, volj, lap_weight, 1.0, ParticleStore::diffusion_mask_of(kind[j])));
     }
