@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 namespace adrsph {
 
@@ -20,11 +21,18 @@ struct QuinticKernel {
     support = 3.0 * h;
   }
 
-  // (x)_+ = (x + |x|) / 2, branch-free (see the file comment).
+  // (x)_+, branch-free. A scalar type takes (x + |x|) / 2 (see the file comment); eight lanes
+  // (schemes/simd8.hpp) take max(x, 0), one instruction where the other spelling is three, with
+  // the same value (+0 for every x <= 0, -0 included). A NaN gives 0 there, not NaN; the pair's
+  // other terms still carry it (the 1 / r of the force pass), so a step with one still fails.
   template <class T>
   static T positive(T v) {
-    using std::fabs;  // and simd::fabs for eight lanes (schemes/simd8.hpp)
-    return T(0.5) * (v + fabs(v));
+    if constexpr (std::is_floating_point_v<T>) {
+      using std::fabs;
+      return T(0.5) * (v + fabs(v));
+    } else {
+      return max(v, T(0));
+    }
   }
 
   // W(r). T = float for the single-precision passes.
