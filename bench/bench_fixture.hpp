@@ -83,7 +83,8 @@ struct Fixture {
   void build_list() {
     const ParticleStore& s = solver.particles();
     list.build(grid, std::span(s.x).first(size()), std::span(s.y).first(size()), cutoff,
-               static_cast<std::uint32_t>(size()));
+               static_cast<std::uint32_t>(size()), NeighbourList::Width::automatic,
+               {s.kind.data(), kWallByte});  // as the solver builds it
   }
 };
 

@@ -48,6 +48,29 @@ inline std::uint32_t in_row(std::size_t i, std::uint32_t j, double d2, double rc
   return static_cast<std::uint32_t>(d2 < rc2) - static_cast<std::uint32_t>(j == i);
 }
 
+// visit(j, take) for each candidate j of particle i's row, take = 1 if j belongs in it, else 0
+// (in_row, and the Omit rule). The rule's test of kind[j] is made only in the rows it applies
+// to (a branch per row: walls come in runs along the curve).
+template <class Visit>
+inline void for_each_candidate(const CellGrid& grid, std::span<const double> x,
+                               std::span<const double> y, double rc2, std::size_t i,
+                               NeighbourList::Omit omit, Visit&& visit) {
+  const double xi = x[i], yi = y[i];
+  if (omit.kind != nullptr && omit.kind[i] == omit.among) {
+    const std::uint8_t* kind = omit.kind;
+    const std::uint8_t among = omit.among;
+    grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
+      const double dx = xi - x[j], dy = yi - y[j];
+      visit(j, in_row(i, j, dx * dx + dy * dy, rc2) & static_cast<std::uint32_t>(kind[j] != among));
+    });
+  } else {
+    grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
+      const double dx = xi - x[j], dy = yi - y[j];
+      visit(j, in_row(i, j, dx * dx + dy * dy, rc2));
+    });
+  }
+}
+
 // Fill row i of the CSR with entry(i, j), j its neighbours in the order the cells give them,
 // then pad it to its end with `pad` (rows of the 16-bit form end with their last entry). Every
 // candidate is stored and the row end advances by in_row, with no branch on it (a branch ran the
@@ -57,8 +80,8 @@ inline std::uint32_t in_row(std::size_t i, std::uint32_t j, double d2, double rc
 // accept an OpenMP loop in a generic lambda that reads the enclosing function's locals.)
 template <class T, class Entry>
 void fill_rows(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
-               double rc2, const std::vector<std::uint32_t>& offset, std::uint32_t longest,
-               T* entries, Entry entry, T pad) {
+               double rc2, NeighbourList::Omit omit, const std::vector<std::uint32_t>& offset,
+               std::uint32_t longest, T* entries, Entry entry, T pad) {
   const std::size_t n = offset.size() - 1;
 #pragma omp parallel
   {
@@ -67,11 +90,9 @@ void fill_rows(const CellGrid& grid, std::span<const double> x, std::span<const 
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       std::uint32_t k = 0;
-      const double xi = x[i], yi = y[i];
-      grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
-        const double dx = xi - x[j], dy = yi - y[j];
+      for_each_candidate(grid, x, y, rc2, i, omit, [&](std::uint32_t j, std::uint32_t take) {
         row[k] = entry(i, j);
-        k += in_row(i, j, dx * dx + dy * dy, rc2);
+        k += take;
       });
       T* out = entries + offset[i];
       std::copy_n(row, k, out);
@@ -82,7 +103,8 @@ void fill_rows(const CellGrid& grid, std::span<const double> x, std::span<const 
 }  // namespace
 
 bool NeighbourList::build_one_pass(const CellGrid& grid, std::span<const double> x,
-                                   std::span<const double> y, double rc2, std::size_t n) {
+                                   std::span<const double> y, double rc2, std::size_t n,
+                                   Omit omit) {
   const std::size_t n_before = offset_.empty() ? 0 : offset_.size() - 1;
   if (wide_ || n == 0 || n_before == 0) return false;
   // Each thread's share of the particles, [first[t], first[t + 1]), and of the entries' capacity,
@@ -131,11 +153,9 @@ bool NeighbourList::build_one_pass(const CellGrid& grid, std::span<const double>
       std::size_t at = region[t];
       for (std::size_t i = first[t]; i < first[t + 1]; ++i) {
         std::uint32_t k = 0;
-        const double xi = x[i], yi = y[i];
-        grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
-          const double dx = xi - x[j], dy = yi - y[j];
+        for_each_candidate(grid, x, y, rc2, i, omit, [&](std::uint32_t j, std::uint32_t take) {
           row[std::min(k, kMaxRow)] = j;
-          k += in_row(i, j, dx * dx + dy * dy, rc2);
+          k += take;
         });
         longest = std::max(longest, k);
         if (padded(k) > kMaxRow || at + k > region[t + 1]) {
@@ -171,12 +191,12 @@ bool NeighbourList::build_one_pass(const CellGrid& grid, std::span<const double>
 
 void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
                           std::span<const double> y, double cutoff, std::uint32_t padding_index,
-                          Width width) {
+                          Width width, Omit omit) {
   const std::size_t n = padding_index;  // real particles are [0, n)
   const double rc2 = cutoff * cutoff;
   padding_ = padding_index;
   const bool first_build = offset_.empty();
-  one_pass_ = width == Width::automatic && build_one_pass(grid, x, y, rc2, n);
+  one_pass_ = width == Width::automatic && build_one_pass(grid, x, y, rc2, n, omit);
   if (one_pass_) return;
   offset_.assign(n + 1, 0);
   std::size_t real_total = 0;
@@ -185,12 +205,9 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
 #pragma omp parallel for schedule(static) reduction(+ : real_total) reduction(max : far, longest)
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t cnt = 0, lo = static_cast<std::uint32_t>(i), hi = lo;
-    const double xi = x[i], yi = y[i];
-    grid.for_each_near(xi, yi, kOneRing, [&](std::uint32_t j) {
-      const double dx = xi - x[j], dy = yi - y[j];
+    for_each_candidate(grid, x, y, rc2, i, omit, [&](std::uint32_t j, std::uint32_t near) {
       // Arithmetic and selects, not branches (see fill_rows); a candidate out of range
       // counts as i itself for the offset range.
-      const std::uint32_t near = in_row(i, j, dx * dx + dy * dy, rc2);
       const std::uint32_t m = near ? j : static_cast<std::uint32_t>(i);
       cnt += near;
       lo = std::min(lo, m);
@@ -209,13 +226,13 @@ void NeighbourList::build(const CellGrid& grid, std::span<const double> x,
   if (wide_) {
     size_entries(index_, offset16_, offset_[n]);
     fill_rows(
-        grid, x, y, rc2, offset_, longest, index_.data(),
+        grid, x, y, rc2, omit, offset_, longest, index_.data(),
         [](std::size_t, std::uint32_t j) { return j; }, padding_index);
   } else {
     size_entries(offset16_, index_, offset_[n],
                  first_build ? first_build_spare(offset_[n]) : one_pass_spare(offset_[n]));
     fill_rows(
-        grid, x, y, rc2, offset_, longest, offset16_.data(),
+        grid, x, y, rc2, omit, offset_, longest, offset16_.data(),
         [](std::size_t i, std::uint32_t j) {
           return static_cast<std::int16_t>(static_cast<std::int64_t>(j) -
                                            static_cast<std::int64_t>(i));

@@ -95,9 +95,18 @@ class NeighbourList {
     return {form.row(i, kb, ke, buffer), kb, ke - kb, padded(ke - kb)};
   }
 
+  // Particles of one class whose rows leave each other out: where kind[i] == among, row i lists
+  // no j with kind[j] == among. The reactor's walls: only the boundary pass reads a wall's row,
+  // and it samples no wall (a third of a wall's row, which it weighted by zero). Default: none.
+  struct Omit {
+    const std::uint8_t* kind;  // nullptr: no rule
+    std::uint8_t among;
+  };
+
   // Build for particles already sorted by `grid` (grid.sort() then permuted). Self excluded.
   void build(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
-             double cutoff, std::uint32_t padding_index, Width width = Width::automatic);
+             double cutoff, std::uint32_t padding_index, Width width = Width::automatic,
+             Omit omit = {nullptr, 0});
 
   // pass(form) with form an Offsets or an Indices of this list; the entries of particle i are
   // [begin(i), end(i)): its real ones (16-bit form), padded to a multiple of kPad (32-bit form).
@@ -132,7 +141,7 @@ class NeighbourList {
   // False (and the list to be built in two passes: count, then fill) at the first build, for
   // the 32-bit form, or when a thread's rows outgrew its region.
   bool build_one_pass(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
-                      double rc2, std::size_t n);
+                      double rc2, std::size_t n, Omit omit);
 
   std::vector<std::uint32_t> offset_;   // CSR row starts, size n + 1
   std::vector<std::int16_t> offset16_;  // entries, 16-bit form
