@@ -141,64 +141,65 @@ TEST(NeighbourList, SixteenBitOffsetsListWhatThirtyTwoBitIndicesList) {
 }
 
 // Particles marked as one class (the solver's walls: here the rows within 0.5 of the cloud's
-// top and bottom) list no marked particle in their rows; every other row is complete. The
-// first (two-pass) build, a second (one-pass) build with 1 and 2 threads, and the 32-bit form
-// hold exactly those pairs.
+// top and bottom) list no marked particle in their rows, or nothing (whole_row); every other
+// row is complete. The first (two-pass) build, a second (one-pass) build with 1 and 2 threads,
+// and the 32-bit form hold exactly those pairs.
 TEST(NeighbourList, RowsOfAMarkedClassLeaveOutTheirClass) {
   const int threads_before = omp_get_max_threads();
-  for (int threads : {1, 2}) {
-    omp_set_num_threads(threads);
-    Cloud cloud(17);
-    const std::size_t n = cloud.x.size();
-    constexpr std::uint8_t kMarked = 3;
-    std::vector<std::uint8_t> kind(n + 1, kMarked);  // (the padding particle: marked too)
-    std::size_t marked = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      kind[i] = std::fabs(cloud.y[i]) > 2.0 ? kMarked : 0;
-      marked += kind[i] == kMarked;
-    }
-    ASSERT_GT(marked, n / 10);
-    const NeighbourList::Omit omit{kind.data(), kMarked};
-    const auto padding = static_cast<std::uint32_t>(n);
-    auto expect_rule = [&](const NeighbourList& list, const char* what) {
-      std::size_t wrong = 0, expected = 0, left_out = 0;
-      list.with_indices([&](auto form) {
-        std::vector<std::uint32_t> buffer(NeighbourList::kRowBuffer);
-        for (std::size_t i = 0; i < n; ++i) {
-          const std::uint32_t kb = list.begin(i), ke = list.end(i);
-          const std::uint32_t* row = form.row(i, kb, ke, buffer.data());
-          std::set<std::uint32_t> got;
-          for (std::uint32_t k = 0; k < NeighbourList::padded(ke - kb); ++k)
-            if (row[k] != padding) got.insert(row[k]);
-          std::set<std::uint32_t> want;
-          for (std::size_t j = 0; j < n; ++j) {
-            if (j == i || cloud.distance(i, j) >= kCutoff) continue;
-            if (kind[i] == kMarked && kind[j] == kMarked) {
-              ++left_out;
-              continue;
+  for (const bool whole_row : {false, true})
+    for (int threads : {1, 2}) {
+      omp_set_num_threads(threads);
+      Cloud cloud(17);
+      const std::size_t n = cloud.x.size();
+      constexpr std::uint8_t kMarked = 3;
+      std::vector<std::uint8_t> kind(n + 1, kMarked);  // (the padding particle: marked too)
+      std::size_t marked = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        kind[i] = std::fabs(cloud.y[i]) > 2.0 ? kMarked : 0;
+        marked += kind[i] == kMarked;
+      }
+      ASSERT_GT(marked, n / 10);
+      const NeighbourList::Omit omit{kind.data(), kMarked, whole_row};
+      const auto padding = static_cast<std::uint32_t>(n);
+      auto expect_rule = [&](const NeighbourList& list, const char* what) {
+        std::size_t wrong = 0, expected = 0, left_out = 0;
+        list.with_indices([&](auto form) {
+          std::vector<std::uint32_t> buffer(NeighbourList::kRowBuffer);
+          for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t kb = list.begin(i), ke = list.end(i);
+            const std::uint32_t* row = form.row(i, kb, ke, buffer.data());
+            std::set<std::uint32_t> got;
+            for (std::uint32_t k = 0; k < NeighbourList::padded(ke - kb); ++k)
+              if (row[k] != padding) got.insert(row[k]);
+            std::set<std::uint32_t> want;
+            for (std::size_t j = 0; j < n; ++j) {
+              if (j == i || cloud.distance(i, j) >= kCutoff) continue;
+              if (kind[i] == kMarked && (whole_row || kind[j] == kMarked)) {
+                ++left_out;
+                continue;
+              }
+              want.insert(static_cast<std::uint32_t>(j));
             }
-            want.insert(static_cast<std::uint32_t>(j));
+            expected += want.size();
+            wrong += got != want;
           }
-          expected += want.size();
-          wrong += got != want;
-        }
-      });
-      EXPECT_EQ(wrong, 0u) << what << ", " << threads << " threads";
-      EXPECT_GT(left_out, 10 * marked) << what;  // whole parts of the marked rows left out
-      EXPECT_NEAR(list.mean_neighbours(), static_cast<double>(expected) / n, 1e-12) << what;
-    };
-    NeighbourList list, wide;
-    list.build(cloud.grid, cloud.x, cloud.y, kCutoff, padding, NeighbourList::Width::automatic,
-               omit);
-    EXPECT_FALSE(list.one_pass());
-    expect_rule(list, "first build");
-    list.build(cloud.grid, cloud.x, cloud.y, kCutoff, padding, NeighbourList::Width::automatic,
-               omit);
-    EXPECT_TRUE(list.one_pass());
-    expect_rule(list, "one-pass build");
-    wide.build(cloud.grid, cloud.x, cloud.y, kCutoff, padding, NeighbourList::Width::wide, omit);
-    expect_rule(wide, "32-bit form");
-  }
+        });
+        EXPECT_EQ(wrong, 0u) << what << ", " << threads << " threads";
+        EXPECT_GT(left_out, 10 * marked) << what;  // whole parts of the marked rows left out
+        EXPECT_NEAR(list.mean_neighbours(), static_cast<double>(expected) / n, 1e-12) << what;
+      };
+      NeighbourList list, wide;
+      list.build(cloud.grid, cloud.x, cloud.y, kCutoff, padding, NeighbourList::Width::automatic,
+                 omit);
+      EXPECT_FALSE(list.one_pass());
+      expect_rule(list, "first build");
+      list.build(cloud.grid, cloud.x, cloud.y, kCutoff, padding, NeighbourList::Width::automatic,
+                 omit);
+      EXPECT_TRUE(list.one_pass());
+      expect_rule(list, "one-pass build");
+      wide.build(cloud.grid, cloud.x, cloud.y, kCutoff, padding, NeighbourList::Width::wide, omit);
+      expect_rule(wide, "32-bit form");
+    }
   omp_set_num_threads(threads_before);
 }
 

@@ -79,7 +79,8 @@ struct CandidateRanges {
 };
 
 // visit(j, take) for each candidate j of particle i's row, take = 1 if j belongs in it, else 0
-// (in_row, and the Omit rule), j in the order CellGrid::for_each_near gives. The rule's test of
+// (in_row, and the Omit rule; none at all in a row it empties), j in the order
+// CellGrid::for_each_near gives. The rule's test of
 // kind[j] is made only in the rows it applies to (a branch per row: walls come in runs along
 // the curve). `near`: the calling thread's ranges (of the last cell it visited).
 template <class Visit>
@@ -90,6 +91,7 @@ inline void for_each_candidate(const CellGrid& grid, std::span<const double> x,
   near.set(grid, xi, yi);
   const int count = near.count;
   if (omit.kind != nullptr && omit.kind[i] == omit.among) {
+    if (omit.whole_row) return;  // an empty row
     const std::uint8_t* kind = omit.kind;
     const std::uint8_t among = omit.among;
     for (int c = 0; c < count; ++c) {

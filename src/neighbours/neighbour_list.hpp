@@ -96,17 +96,20 @@ class NeighbourList {
   }
 
   // Particles of one class whose rows leave each other out: where kind[i] == among, row i lists
-  // no j with kind[j] == among. The reactor's walls: only the boundary pass reads a wall's row,
-  // and it samples no wall (a third of a wall's row, which it weighted by zero). Default: none.
+  // no j with kind[j] == among, or nothing at all (whole_row). The reactor's walls: only the
+  // boundary pass reads a wall's row, and it samples no wall (a third of a wall's row, which it
+  // weighted by zero); a prescribed flow has no boundary pass and reads no wall's row.
+  // Default: none.
   struct Omit {
     const std::uint8_t* kind;  // nullptr: no rule
     std::uint8_t among;
+    bool whole_row;
   };
 
   // Build for particles already sorted by `grid` (grid.sort() then permuted). Self excluded.
   void build(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
              double cutoff, std::uint32_t padding_index, Width width = Width::automatic,
-             Omit omit = {nullptr, 0});
+             Omit omit = {nullptr, 0, false});
 
   // pass(form) with form an Offsets or an Indices of this list; the entries of particle i are
   // [begin(i), end(i)): its real ones (16-bit form), padded to a multiple of kPad (32-bit form).
