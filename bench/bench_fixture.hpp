@@ -84,7 +84,7 @@ struct Fixture {
     const ParticleStore& s = solver.particles();
     list.build(grid, std::span(s.x).first(size()), std::span(s.y).first(size()), cutoff,
                static_cast<std::uint32_t>(size()), NeighbourList::Width::automatic,
-               {s.kind.data(), kWallByte, c.flow == Flow::prescribed});  // as the solver does
+               solver.wall_rows());  // the solver's rule
   }
 };
 

@@ -135,12 +135,8 @@ void SphSolver::rebuild() {
   {
     ScopedPhase timer(timers_, Phase::neighbours);
     const std::size_t n = store_.size();
-    // A wall's row lists no walls: only the boundary pass reads it, and it samples the fluid
-    // side alone; a prescribed flow has no boundary pass, and its walls' rows are empty. Walls
-    // never change kind, so no row goes stale by it between builds.
     list_.build(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n), cutoff_,
-                static_cast<std::uint32_t>(n), NeighbourList::Width::automatic,
-                {store_.kind.data(), kWallByte, case_.flow == Flow::prescribed});
+                static_cast<std::uint32_t>(n), NeighbourList::Width::automatic, wall_rows());
     monitor_.reset(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n),
                    std::move(order));
   }

@@ -55,6 +55,12 @@ class SphSolver {
   const QuinticKernel& kernel() const { return kernel_; }
   const CellGrid& grid() const { return grid_; }
   double cutoff() const { return cutoff_; }
+  // The rule the lists are built with: a wall's row lists no walls (only the boundary pass
+  // reads it, and it samples the fluid side alone); a prescribed flow has no boundary pass,
+  // and its walls' rows are empty. Walls never change kind, so no row goes stale between builds.
+  NeighbourList::Omit wall_rows() const {
+    return {store_.kind.data(), kWallByte, case_.flow == Flow::prescribed};
+  }
   const ParticleStore& particles() const { return store_; }
   ParticleStore& particles() { return store_; }
   PhaseTimers& timers() { return timers_; }

@@ -4,12 +4,10 @@
 
 #include <algorithm>
 #include <cstring>
-#include <type_traits>
 
 namespace adrsph {
 
 namespace {
-
 // Growing past the capacity adds ~3% headroom, not std::vector's doubling (the lists are the
 // second largest block of a run, after the particle arrays); the other form is released.
 // `total` entries and the slack a 16-bit row's expansion reads past the last row, with at least
@@ -80,36 +78,33 @@ struct CandidateRanges {
 
 // visit(j, take) for each candidate j of particle i's row, take = 1 if j belongs in it, else 0
 // (in_row, and the Omit rule; none at all in a row it empties), j in the order
-// CellGrid::for_each_near gives. The rule's test of
-// kind[j] is made only in the rows it applies to (a branch per row: walls come in runs along
-// the curve). `near`: the calling thread's ranges (of the last cell it visited).
+// CellGrid::for_each_near gives. The rule's test of kind[j] is made only in the rows it applies
+// to (a branch per row: walls come in runs along the curve). `near`: the calling thread's
+// ranges (of the last cell it visited).
 template <class Visit>
 inline void for_each_candidate(const CellGrid& grid, std::span<const double> x,
                                std::span<const double> y, double rc2, std::size_t i,
                                NeighbourList::Omit omit, CandidateRanges& near, Visit&& visit) {
   const double xi = x[i], yi = y[i];
   near.set(grid, xi, yi);
+  // Bounds read into locals: visit() stores through pointers g++ cannot tell apart from them.
   const int count = near.count;
+  auto scan = [&](auto keep) {  // keep(j): all bits set unless the rule leaves j out (0)
+    for (int c = 0; c < count; ++c) {
+      const std::uint32_t a = near.first[c], b = near.last[c];
+      for (std::uint32_t j = a; j < b; ++j) {
+        const double dx = xi - x[j], dy = yi - y[j];
+        visit(j, in_row(i, j, dx * dx + dy * dy, rc2) & keep(j));
+      }
+    }
+  };
   if (omit.kind != nullptr && omit.kind[i] == omit.among) {
     if (omit.whole_row) return;  // an empty row
-    const std::uint8_t* kind = omit.kind;
-    const std::uint8_t among = omit.among;
-    for (int c = 0; c < count; ++c) {
-      const std::uint32_t a = near.first[c], b = near.last[c];
-      for (std::uint32_t j = a; j < b; ++j) {
-        const double dx = xi - x[j], dy = yi - y[j];
-        visit(j,
-              in_row(i, j, dx * dx + dy * dy, rc2) & static_cast<std::uint32_t>(kind[j] != among));
-      }
-    }
+    scan([kind = omit.kind, among = omit.among](std::uint32_t j) {
+      return 0u - static_cast<std::uint32_t>(kind[j] != among);
+    });
   } else {
-    for (int c = 0; c < count; ++c) {
-      const std::uint32_t a = near.first[c], b = near.last[c];
-      for (std::uint32_t j = a; j < b; ++j) {
-        const double dx = xi - x[j], dy = yi - y[j];
-        visit(j, in_row(i, j, dx * dx + dy * dy, rc2));
-      }
-    }
+    scan([](std::uint32_t) { return ~0u; });  // (the mask then costs nothing)
   }
 }
 
