@@ -48,6 +48,7 @@ struct Cloud {
   void build() {
     std::vector<std::uint32_t> order, outside;
     grid.sort(x, y, order, outside);  // (re-sort in place: order is the identity when sorted)
+    EXPECT_TRUE(outside.empty());     // (the tests' fields keep every particle in the grid)
     std::vector<double> xs, ys;
     for (std::uint32_t k : order) {
       xs.push_back(x[k]);
@@ -326,32 +327,107 @@ TEST(NeighbourList, FallsBackToIndicesWhereAnOffsetDoesNotFitSixteenBits) {
   EXPECT_GT(farthest, static_cast<std::size_t>(NeighbourList::kMaxOffset));  // the case tested
 }
 
+// By brute force: how far the pairs that were more than `reach` apart at the build (x0, y0)
+// have closed in by now (x, y): the largest reach - |r| over them (what max_closing bounds).
+double true_max_closing(const std::vector<double>& x0, const std::vector<double>& y0,
+                        const std::vector<double>& x, const std::vector<double>& y, double reach) {
+  double worst = -reach;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = i + 1; j < x.size(); ++j) {
+      if (std::hypot(x0[i] - x0[j], y0[i] - y0[j]) <= reach) continue;
+      worst = std::max(worst, reach - std::hypot(x[i] - x[j], y[i] - y[j]));
+    }
+  return worst;
+}
+
 TEST(DisplacementMonitor, UniformTranslationDoesNotAgeTheLists) {
   Cloud cloud(3);
   DisplacementMonitor monitor;
   monitor.reset(cloud.grid, cloud.x, cloud.y);
-  for (std::size_t i = 0; i < cloud.x.size(); ++i) {
-    cloud.x[i] += 5.0 * kSkin;  // far more than the skin, but all together
-    cloud.y[i] -= 2.0 * kSkin;
+  for (int call = 1; call <= 3; ++call) {  // the later calls take the gradient from the last
+    for (std::size_t i = 0; i < cloud.x.size(); ++i) {
+      cloud.x[i] += 5.0 * kSkin;  // far more than the skin, but all together
+      cloud.y[i] -= 2.0 * kSkin;
+    }
+    // What is left is the 16-bit fixed point of the stored build positions (a step of
+    // 2 cut-offs / 65535 = 2.5e-5 mm here), as noise in the gradients the cells fit.
+    const double bound = monitor.max_closing(cloud.grid, cloud.x, cloud.y, kCutoff, call);
+    EXPECT_LT(bound, 5e-3 * kSkin) << "call " << call;
   }
-  // What is left is the 16-bit fixed point of the stored build positions (a step of
-  // 2 cut-offs / 65535 = 2.5e-5 mm here), counted twice: in the spread and in its bound.
-  const double bound = monitor.max_relative(cloud.grid, cloud.x, cloud.y);
-  EXPECT_LT(bound, 2e-3 * kSkin);
-  EXPECT_LT(bound, 4.0 * std::sqrt(2.0) * kCutoff / 65535.0 + 1e-6);
 }
 
-TEST(DisplacementMonitor, ShearIsBoundedByTheVelocityJumpAcrossTwoCells) {
+// A simple shear d = (rate y, 0): a pair at the reach closes in by at most rate reach / 2
+// (at 45 degrees). The bound covers the true closing, found by brute force, and stays within
+// half of 2 rate cut-off, a bound on |d_i - d_j| over two adjacent cells, even at the cloud's
+// ragged edges (cells filled in strips).
+TEST(DisplacementMonitor, ShearClosesPairsInByAboutHalfItsJumpOverTheReach) {
   Cloud cloud(5);
+  const std::vector<double> x0 = cloud.x, y0 = cloud.y;
   DisplacementMonitor monitor;
   monitor.reset(cloud.grid, cloud.x, cloud.y);
-  const double rate = 0.01;  // d = (rate * y, 0): displacement difference rate * |y_i - y_j|
-  for (std::size_t i = 0; i < cloud.x.size(); ++i) cloud.x[i] += rate * cloud.y[i];
-  const double bound = monitor.max_relative(cloud.grid, cloud.x, cloud.y);
-  // Two adjacent cells span at most two cell heights; the bound must cover the real spread
-  // over one cut-off and stay below the spread over two cells (plus jitter).
-  EXPECT_GE(bound, rate * kCutoff);
-  EXPECT_LE(bound, rate * (2.0 * kCutoff * 1.2 + 0.4 * kDx) + 1e-5);
+  const double rate = 0.01;  // per call
+  for (int call = 1; call <= 3; ++call) {
+    for (std::size_t i = 0; i < cloud.x.size(); ++i) cloud.x[i] = x0[i] + call * rate * y0[i];
+    const double bound = monitor.max_closing(cloud.grid, cloud.x, cloud.y, kCutoff, call);
+    const double truth = true_max_closing(x0, y0, cloud.x, cloud.y, kCutoff);
+    EXPECT_GE(bound, truth) << "call " << call;
+    EXPECT_GT(truth, 0.4 * call * rate * kCutoff);  // the case tested: pairs do close in
+    // The first call has no gradient to go by (the box of d itself: the shear over two rows).
+    if (call > 1) {
+      EXPECT_LT(bound, call * rate * kCutoff) << "call " << call;
+    }
+  }
+}
+
+// Walls do not move and the fluid next to them shears (d = rate (y - y_wall) above the wall,
+// 0 below): no affine field, the displacement has a kink. The bound still covers the truth.
+TEST(DisplacementMonitor, BoundCoversAShearNextToAWallAtRest) {
+  Cloud cloud(9);
+  const std::vector<double> x0 = cloud.x, y0 = cloud.y;
+  DisplacementMonitor monitor;
+  monitor.reset(cloud.grid, cloud.x, cloud.y);
+  const double rate = 0.01, wall = -1.2;
+  for (int call = 1; call <= 3; ++call) {
+    for (std::size_t i = 0; i < cloud.x.size(); ++i)
+      cloud.x[i] = x0[i] + call * rate * std::max(y0[i] - wall, 0.0);
+    const double bound = monitor.max_closing(cloud.grid, cloud.x, cloud.y, kCutoff, call);
+    EXPECT_GE(bound, true_max_closing(x0, y0, cloud.x, cloud.y, kCutoff)) << "call " << call;
+    if (call > 1) {
+      EXPECT_LT(bound, 1.5 * call * rate * kCutoff) << "call " << call;
+    }
+  }
+}
+
+// Two blocks of particles, one or two empty columns of cells between them, move towards each
+// other: no particle between them sees it coming, only the pairs of cells two apart and the
+// range of the displacement over all pairs farther apart do. The bound covers the closing.
+TEST(DisplacementMonitor, BlocksClosingInAcrossEmptyCellsAreSeen) {
+  for (int empty = 1; empty <= 2; ++empty) {
+    CellGrid grid(0.0, 10.0, 0.0, 5.0, kCutoff);
+    std::vector<double> x0, y0;
+    for (int block = 0; block < 2; ++block) {
+      const double left = (2 + block * (empty + 1)) * kCutoff;  // the block fills one column
+      for (double px = left + 0.5 * kDx; px < left + kCutoff; px += kDx)
+        for (double py = kCutoff + 0.5 * kDx; py < 4.0 * kCutoff; py += kDx) {
+          x0.push_back(px);
+          y0.push_back(py);
+        }
+    }
+    std::vector<std::uint32_t> order, outside;
+    grid.sort(x0, y0, order, outside);
+    ASSERT_TRUE(outside.empty());
+    std::vector<double> xs, ys;
+    for (std::uint32_t k : order) xs.push_back(x0[k]), ys.push_back(y0[k]);
+    DisplacementMonitor monitor;
+    monitor.reset(grid, xs, ys);
+    const double split = (2 + 1.0) * kCutoff;     // between the blocks
+    const double move = empty == 1 ? 0.2 : 0.65;  // each block, towards the other
+    std::vector<double> x = xs;
+    for (double& px : x) px += px < split ? move : -move;
+    const double truth = true_max_closing(xs, ys, x, ys, kCutoff);
+    EXPECT_GT(truth, kSkin) << empty;  // the case tested: pairs came within the support
+    EXPECT_GE(monitor.max_closing(grid, x, ys, kCutoff, 1.0), truth) << empty;
+  }
 }
 
 // The build positions are kept relative to each particle's cell; one that is not where the
@@ -361,14 +437,21 @@ TEST(DisplacementMonitor, AParticleOutsideItsCellWidensTheBound) {
   Cloud cloud(7);
   DisplacementMonitor clean;
   clean.reset(cloud.grid, cloud.x, cloud.y);
-  const double at_rest = clean.max_relative(cloud.grid, cloud.x, cloud.y);
-  EXPECT_LT(at_rest, 1e-3 * kSkin);
+  // At rest only the fixed point is left: each coordinate of each box spans at most a step
+  // (sqrt(2) steps as a vector), and the stored error adds 2 sqrt(2) half steps; 1e-5 for the
+  // rounding of the float arithmetic.
+  const double step = 2.0 * kCutoff / 65535.0;
+  const double at_rest = clean.max_closing(cloud.grid, cloud.x, cloud.y, kCutoff, 1.0);
+  EXPECT_LT(at_rest, 2.0 * std::sqrt(2.0) * step + 1e-5);
   cloud.x[0] += 2.0 * kCutoff;  // no longer in its cell's range of the sort
   DisplacementMonitor monitor;
   monitor.reset(cloud.grid, cloud.x, cloud.y);
-  EXPECT_GT(monitor.max_relative(cloud.grid, cloud.x, cloud.y), 0.5 * kCutoff);
+  EXPECT_GT(monitor.max_closing(cloud.grid, cloud.x, cloud.y, kCutoff, 1.0), 0.5 * kCutoff);
   std::vector<double> fewer(cloud.x.begin(), cloud.x.end() - 1);
   EXPECT_THROW(monitor.reset(cloud.grid, fewer, fewer), std::logic_error);
+  // The lists' reach must fit in a cell (pairs of cells farther apart are not examined).
+  EXPECT_THROW((void)clean.max_closing(cloud.grid, cloud.x, cloud.y, 1.01 * kCutoff, 1.0),
+               std::logic_error);
 }
 
 // The stored build positions are rounded to a fixed-point step (2 cells / 65535), and the
@@ -387,43 +470,64 @@ TEST(DisplacementMonitor, BoundCoversWhatTheStoredRoundingHides) {
   DisplacementMonitor monitor;
   monitor.reset(grid, x, y);
   x[0] += step;  // the real relative displacement: one step
-  EXPECT_GE(monitor.max_relative(grid, x, y), step);
-  EXPECT_LT(monitor.max_relative(grid, x, y), 3.0 * step);  // and not much more
+  EXPECT_GE(monitor.max_closing(grid, x, y, 1.0, 1.0), step);
+  EXPECT_LT(monitor.max_closing(grid, x, y, 1.0, 2.0), 3.0 * step);  // and not much more
 }
 
-// The safety property: with a random, rough displacement field, as long as the monitor says
-// "keep the lists", every pair closer than the kernel support is in them.
+// The safety property: with rough displacement fields (a shear, a compression, a rotation, a
+// wall at rest, random kicks), as long as the monitor says "keep the lists", the bound covers
+// the true closing and every pair closer than the kernel support is in the lists.
 TEST(DisplacementMonitor, NoPairWithinTheSupportIsMissedWhileTheListsAreKept) {
-  Cloud cloud(11);
-  DisplacementMonitor monitor;
-  monitor.reset(cloud.grid, cloud.x, cloud.y);
-  std::mt19937 rng(42);
-  std::normal_distribution<double> kick(0.0, 0.02 * kSkin);
-  const std::size_t n = cloud.x.size();
-  int kept_steps = 0, rebuilds = 0;
-  for (int step = 0; step < 120; ++step) {
-    for (std::size_t i = 0; i < n; ++i) {
-      cloud.x[i] += 0.05 * kSkin * (1.0 + cloud.y[i]) + kick(rng);  // shear + noise
-      cloud.y[i] += kick(rng);
-    }
-    if (monitor.max_relative(cloud.grid, cloud.x, cloud.y) > kSkin) {
-      cloud.build();
-      monitor.reset(cloud.grid, cloud.x, cloud.y);
-      ++rebuilds;
-      continue;
-    }
-    ++kept_steps;
-    const auto listed = cloud.listed();
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        if (cloud.distance(i, j) >= kSupport) continue;
-        ASSERT_EQ(listed.count({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)}), 1u)
-            << "step " << step << ": pair " << i << ", " << j << " within 3h missing";
+  struct Field {
+    const char* name;
+    double shear, squeeze, turn, wall;  // per step; wall: particles below it stay put
+  };
+  for (const Field& field :
+       {Field{"shear", 0.05, 0.0, 0.0, -9.0}, Field{"squeeze and turn", 0.0, 0.004, 0.001, -9.0},
+        Field{"shear over a wall", 0.05, 0.0, 0.0, -1.0}}) {
+    Cloud cloud(11);
+    std::vector<double> x0 = cloud.x, y0 = cloud.y;
+    DisplacementMonitor monitor;
+    monitor.reset(cloud.grid, cloud.x, cloud.y);
+    std::mt19937 rng(42);
+    std::normal_distribution<double> kick(0.0, 0.02 * kSkin);
+    const std::size_t n = cloud.x.size();
+    int kept_steps = 0, rebuilds = 0, since_build = 0;
+    for (int step = 0; step < 60; ++step) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (cloud.y[i] < field.wall) continue;
+        const double px = cloud.x[i] - 10.0, py = cloud.y[i];
+        cloud.x[i] += field.shear * kSkin * (1.0 + py - std::max(field.wall, -3.0)) -
+                      field.squeeze * px - field.turn * py + kick(rng);
+        cloud.y[i] += field.turn * px + kick(rng);
+      }
+      ++since_build;
+      const double bound = monitor.max_closing(cloud.grid, cloud.x, cloud.y, kCutoff, since_build);
+      ASSERT_GE(bound, true_max_closing(x0, y0, cloud.x, cloud.y, kCutoff))
+          << field.name << ", step " << step;
+      if (bound > kSkin) {
+        cloud.build();
+        x0 = cloud.x, y0 = cloud.y;
+        monitor.reset(cloud.grid, cloud.x, cloud.y);
+        ++rebuilds;
+        since_build = 0;
+        continue;
+      }
+      ++kept_steps;
+      const auto listed = cloud.listed();
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = i + 1; j < n; ++j) {
+          if (cloud.distance(i, j) >= kSupport) continue;
+          ASSERT_EQ(listed.count({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)}),
+                    1u)
+              << field.name << ", step " << step << ": pair " << i << ", " << j
+              << " within 3h missing";
+        }
       }
     }
+    EXPECT_GT(kept_steps, 30) << field.name;  // kept lists were exercised, not rebuilds only
+    EXPECT_GT(rebuilds, 1) << field.name;
   }
-  EXPECT_GT(kept_steps, 60);  // the test exercised kept lists, not rebuilds only
-  EXPECT_GT(rebuilds, 1);
 }
 
 }  // namespace

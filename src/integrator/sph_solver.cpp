@@ -156,8 +156,8 @@ bool SphSolver::needs_rebuild() {
   if (2.0 * moved_abs_ <= skin_) return false;  // no particle moved skin/2: nothing to check
   ScopedPhase timer(timers_, Phase::neighbours);
   const std::size_t n = store_.size();
-  return monitor_.max_relative(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n)) >
-         skin_;
+  return monitor_.max_closing(grid_, std::span(store_.x).first(n), std::span(store_.y).first(n),
+                              cutoff_, moved_abs_) > skin_;
 }
 
 void SphSolver::evaluate() {

@@ -1,12 +1,26 @@
 // When must the cached neighbour lists be rebuilt?
 //
-// A pair (i, j) missing from the lists was farther apart than the cut-off 3h + skin at the
-// build. It can interact (come within 3h) only once |d_i - d_j| > skin, with d the displacement
-// since the build. Such a pair sat in the same or in adjacent cells at the build (cells are at
-// least one cut-off wide), so a bound of |d_i - d_j| over every pair of adjacent cells is a
-// safe test. In a channel the particles of two adjacent cells move almost together: the bound
-// grows with the shear across two cells, not with the flow speed, and the lists last several
-// times longer than the usual "max |d| > skin / 2" rule allows.
+// The lists hold every pair within `reach` = support + skin at the build. A pair missing from
+// them was farther than reach apart; it can interact once it has closed in by more than the
+// skin. With d the displacement since the build, and r0 a missing pair's separation at the
+// build (|r0| > reach), write the relative displacement as an affine part and a rest,
+//   d_i - d_j = A r0 + w,   |w| <= E.
+// The pair's separation now is |(I + A) r0 + w| >= sigma |r0| - E > reach - ((1 - sigma)
+// reach + E), sigma the smallest singular value of I + A: the pair closed in by less than
+// (1 - sigma) reach + E. For a shear A = [[0, t], [0, 0]], 1 - sigma ~ t / 2: a pair at 45
+// degrees to the flow closes in by half the shear over its separation, and no pair by more.
+//
+// A is fitted per cell (least squares of the displacement against the build position) and E
+// bounds what the fits leave over the particles of two cells. In a channel the displacement
+// is close to linear across a cell (a shear), so E stays small and the bound grows with half
+// the shear over one reach. A bound on |d_i - d_j| over two adjacent cells grows with the shear
+// over two cells: at the walls, where a kink in d (fluid sheared, walls at rest) keeps E
+// large, the lists last about 1.5 times as long, and about 4 times as long in the fluid.
+//
+// Which pairs are covered: those of the same cell or of cells up to two apart, each with the
+// separation the cells' gap guarantees (and, two apart, also through the gap's component
+// alone); pairs of cells farther apart are at least two cells apart in x or in y, and close in
+// by at most the range of that component of d over all particles.
 #pragma once
 
 #include <cstdint>
@@ -24,11 +38,18 @@ class DisplacementMonitor {
   // are kept in (see release_storage()).
   void reset(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
              std::vector<std::uint32_t> storage = {});
-  // Upper bound of |d_i - d_j| over all pairs of particles in the same or adjacent cells.
-  double max_relative(const CellGrid& grid, std::span<const double> x, std::span<const double> y);
+  // How far pairs that were more than `reach` apart at the build (reach <= the cell size) may
+  // have closed in since: every such pair is now more than reach - max_closing() apart. Lists
+  // built to reach = support + skin hold every pair within the support while
+  // max_closing() <= skin. `progress` grows with the displacements since the build (the time,
+  // or a bound on the distance moved): each call fits the displacement's gradient per cell,
+  // and the next call scales that fit by the ratio of progress to predict its own (the bound
+  // holds whatever the prediction; a good one makes it tight).
+  double max_closing(const CellGrid& grid, std::span<const double> x, std::span<const double> y,
+                     double reach, double progress);
   // Hand out the array of build positions (one 32-bit word per particle): a re-sort uses it
   // for its order, which is dead once the store is permuted, then gives it back to reset().
-  // Until then the monitor holds nothing and max_relative() must not be called.
+  // Until then the monitor holds nothing and max_closing() must not be called.
   std::vector<std::uint32_t> release_storage() { return std::move(packed_); }
 
  private:
@@ -36,9 +57,34 @@ class DisplacementMonitor {
   // build, in 16-bit fixed point per coordinate (x in the high half): steps of 2 cell / 65535
   // over [-cell / 2, 3 cell / 2). Four bytes a particle instead of eight for two floats.
   std::vector<std::uint32_t> packed_;
-  std::vector<float> box_;  // per cell rank: min dx, max dx, min dy, max dy
-  double step_ = 0.0;       // the fixed-point step [mm]
-  double error_ = 0.0;      // largest |x_build - stored x| of any particle and coordinate
+  // Per cell, row-major with a border of two empty cells left, right and above (so that
+  // every neighbour up to two cells right or up has an index), one array per quantity. Set at
+  // a build: filled (1: the cell holds particles, else 0 and every other value 0), the mean
+  // build position (mx, my) from the cell centre, the inverse of its covariance plus a ridge
+  // (ixx, ixy, iyy), and the largest |X|, |Y| of X = x_build - cell centre (rounded up). Set
+  // by max_closing(): the fitted displacement gradient A and the box of f = d - A X (rounded
+  // outwards).
+  struct CellFits {
+    int stride = 0;  // cells per padded row
+    std::vector<float> filled, mx, my, ixx, ixy, iyy, ex, ey;
+    std::vector<float> a11, a12, a21, a22, lo_x, hi_x, lo_y, hi_y;
+    std::vector<float> n11, n12, n21, n22;  // the last call's fit, at its progress
+    void resize(std::size_t cells);
+    std::size_t index(int cx, int cy) const {
+      return static_cast<std::size_t>(cy) * static_cast<std::size_t>(stride) +
+             static_cast<std::size_t>(cx + 2);
+    }
+  };
+  // Largest closing of pairs from cell row cy to the cells (ox, oy) away; out: nx floats of
+  // scratch.
+  template <bool Gap>
+  double row_closing(int cy, int nx, int ox, int oy, double cell, double reach, float* out) const;
+  CellFits fits_;
+  double step_ = 0.0;   // the fixed-point step [mm]
+  double error_ = 0.0;  // largest |x_build - stored x| of any particle and coordinate
+  double outside_ = 0.0;
+  double progress_ = 0.0;  // of the last call since the build (0: none yet)  // largest distance of
+                           // a build position from its cell (0 when sorted)
 };
 
 }  // namespace adrsph
