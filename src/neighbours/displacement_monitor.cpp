@@ -33,9 +33,9 @@ float up(double v) {
 }  // namespace
 
 void DisplacementMonitor::CellFits::resize(std::size_t cells) {
-  for (auto* v : {&filled, &mx,  &my,  &ixx, &ixy, &iyy, &ex,   &ey,   &n11,  &n12,
-                  &n21,    &n22, &a11, &a12, &a21, &a22, &lo_x, &hi_x, &lo_y, &hi_y})
+  for (auto* v : {&filled, &mx, &my, &ex, &ey, &a11, &a12, &a21, &a22, &lo_x, &hi_x, &lo_y, &hi_y})
     v->resize(cells);
+  state.resize(cells);
 }
 
 // How far pairs (i in cell a, j in cell b) that were more than `reach` apart at the build may
@@ -159,10 +159,10 @@ void DisplacementMonitor::reset(const CellGrid& grid, std::span<const double> x,
   fits.stride = nx + 4;
   fits.resize(static_cast<std::size_t>(fits.stride) * static_cast<std::size_t>(ny + 2));
   // The border and the empty cells stay empty (filled 0) with every bound 0.
-  for (auto* v : {&fits.n11, &fits.n12, &fits.n21, &fits.n22, &fits.a11, &fits.a12, &fits.a21,
-                  &fits.a22, &fits.lo_x, &fits.hi_x, &fits.lo_y, &fits.hi_y, &fits.ex, &fits.ey,
-                  &fits.mx, &fits.my, &fits.filled})
+  for (auto* v : {&fits.a11, &fits.a12, &fits.a21, &fits.a22, &fits.lo_x, &fits.hi_x, &fits.lo_y,
+                  &fits.hi_y, &fits.ex, &fits.ey, &fits.mx, &fits.my, &fits.filled})
     std::fill(v->begin(), v->end(), 0.0f);
+  std::fill(fits.state.begin(), fits.state.end(), CellFits::State{});
   double error = 0.0, outside = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : error, outside)
   for (int cy = 0; cy < ny; ++cy) {
@@ -201,8 +201,13 @@ void DisplacementMonitor::reset(const CellGrid& grid, std::span<const double> x,
       // filled in a strip has small extents about it.
       const auto mxf = static_cast<float>(mx), myf = static_cast<float>(my);
       fits.mx[k] = mxf, fits.my[k] = myf;
-      fits.ixx[k] = static_cast<float>(cyy / det), fits.ixy[k] = static_cast<float>(-cxy / det);
-      fits.iyy[k] = static_cast<float>(cxx / det);
+      fits.state[k] = {static_cast<float>(cyy / det),
+                       static_cast<float>(-cxy / det),
+                       static_cast<float>(cxx / det),
+                       0.0f,
+                       0.0f,
+                       0.0f,
+                       0.0f};
       fits.ex[k] = up(std::max(hx - mxf, mxf - lx)), fits.ey[k] = up(std::max(hy - myf, myf - ly));
     });
   }
@@ -243,29 +248,32 @@ double DisplacementMonitor::max_closing(const CellGrid& grid, std::span<const do
                    my = fits.my[k];
       scale = std::max({scale, std::fabs(ox), std::fabs(oy), std::fabs(ox + 2 * cell),
                         std::fabs(oy + 2 * cell)});
-      // Build position X (from the centre) and displacement (u, v) of particle i.
-      auto at = [&](std::uint32_t i, double& X, double& Y, double& u, double& v) {
-        const double xb = ox + static_cast<double>(packed_[i] >> 16) * step_;
-        const double yb = oy + static_cast<double>(packed_[i] & 0xffffu) * step_;
-        X = (xb - centre_x) - mx;
-        Y = (yb - centre_y) - my;
-        u = x[i] - xb;
-        v = y[i] - yb;
-      };
       // The gradient the box is taken with: the last call's fit, scaled to this call's
       // progress (exact while the displacements grow in proportion).
-      const auto a11 = static_cast<float>(grow * fits.n11[k]);
-      const auto a12 = static_cast<float>(grow * fits.n12[k]);
-      const auto a21 = static_cast<float>(grow * fits.n21[k]);
-      const auto a22 = static_cast<float>(grow * fits.n22[k]);
+      CellFits::State& state = fits.state[k];
+      const auto a11 = static_cast<float>(grow * state.n11);
+      const auto a12 = static_cast<float>(grow * state.n12);
+      const auto a21 = static_cast<float>(grow * state.n21);
+      const auto a22 = static_cast<float>(grow * state.n22);
+      // Per particle: build position X (from the reference point), displacement (u, v).
+      const std::uint32_t* packed = packed_.data() + first;
+      const double* px = x.data() + first;
+      const double* py = y.data() + first;
+      const double step = step_, rx = centre_x + mx - ox, ry = centre_y + my - oy;
+      const int count = static_cast<int>(last - first);
       double su = 0, sv = 0, sXu = 0, sYu = 0, sXv = 0, sYv = 0;
       double lx = DBL_MAX, hx = -DBL_MAX, ly = DBL_MAX, hy = -DBL_MAX;
-      for (std::uint32_t i = first; i < last; ++i) {
-        double X, Y, u, v;
-        at(i, X, Y, u, v);
+#pragma omp simd reduction(+ : su, sv, sXu, sYu, sXv, sYv) reduction(min : lx, ly) \
+    reduction(max : hx, hy)
+      for (int i = 0; i < count; ++i) {
+        const double qx = static_cast<double>(static_cast<int>(packed[i] >> 16)) * step;
+        const double qy = static_cast<double>(static_cast<int>(packed[i] & 0xffffu)) * step;
+        const double u = px[i] - (ox + qx), v = py[i] - (oy + qy);
+        const double X = qx - rx, Y = qy - ry;
         su += u, sv += v, sXu += X * u, sYu += Y * u, sXv += X * v, sYv += Y * v;
         const double fx = u - (a11 * X + a12 * Y), fy = v - (a21 * X + a22 * Y);
-        lx = std::min(lx, fx), hx = std::max(hx, fx), ly = std::min(ly, fy), hy = std::max(hy, fy);
+        lx = lx < fx ? lx : fx, hx = hx > fx ? hx : fx, ly = ly < fy ? ly : fy,
+        hy = hy > fy ? hy : fy;
       }
       // d = f + A X with |X| <= e per component.
       const double sx = std::fabs(a11) * fits.ex[k] + std::fabs(a12) * fits.ey[k];
@@ -277,11 +285,11 @@ double DisplacementMonitor::max_closing(const CellGrid& grid, std::span<const do
       // (X is from the mean build position, as stored in float: its mean is ~0, and any
       // gradient is valid.)
       const double cxu = sXu * m, cyu = sYu * m, cxv = sXv * m, cyv = sYv * m;
-      const double ixx = fits.ixx[k], ixy = fits.ixy[k], iyy = fits.iyy[k];
-      fits.n11[k] = static_cast<float>(cxu * ixx + cyu * ixy);
-      fits.n12[k] = static_cast<float>(cxu * ixy + cyu * iyy);
-      fits.n21[k] = static_cast<float>(cxv * ixx + cyv * ixy);
-      fits.n22[k] = static_cast<float>(cxv * ixy + cyv * iyy);
+      const double ixx = state.ixx, ixy = state.ixy, iyy = state.iyy;
+      state.n11 = static_cast<float>(cxu * ixx + cyu * ixy);
+      state.n12 = static_cast<float>(cxu * ixy + cyu * iyy);
+      state.n21 = static_cast<float>(cxv * ixx + cyv * ixy);
+      state.n22 = static_cast<float>(cxv * ixy + cyv * iyy);
       fits.a11[k] = a11, fits.a12[k] = a12, fits.a21[k] = a21, fits.a22[k] = a22;
       fits.lo_x[k] = down(lx), fits.hi_x[k] = up(hx), fits.lo_y[k] = down(ly),
       fits.hi_y[k] = up(hy);

@@ -58,17 +58,23 @@ class DisplacementMonitor {
   // over [-cell / 2, 3 cell / 2). Four bytes a particle instead of eight for two floats.
   std::vector<std::uint32_t> packed_;
   // Per cell, row-major with a border of two empty cells left, right and above (so that
-  // every neighbour up to two cells right or up has an index), one array per quantity. Set at
-  // a build: filled (1: the cell holds particles, else 0 and every other value 0), the mean
-  // build position (mx, my) from the cell centre, the inverse of its covariance plus a ridge
-  // (ixx, ixy, iyy), and the largest |X|, |Y| of X = x_build - cell centre (rounded up). Set
-  // by max_closing(): the fitted displacement gradient A and the box of f = d - A X (rounded
-  // outwards).
+  // every neighbour up to two cells right or up has an index). Set at a build: filled (1: the
+  // cell holds particles, else 0 and every other value 0), the mean build position (mx, my)
+  // from the cell centre, and the largest |X|, |Y| of X = x_build - (centre + mean) (rounded
+  // up). Set by max_closing(): the gradient A its box was taken with, and the box of
+  // f = d - A X (rounded outwards). One array per quantity: the pair loop reads them in
+  // order, eight cells at a time.
   struct CellFits {
+    // What the sweep over the particles reads and writes of a cell, together: the inverse of
+    // the build positions' covariance plus a ridge, and the last call's fitted gradient (at
+    // the last call's progress).
+    struct State {
+      float ixx = 0, ixy = 0, iyy = 0, n11 = 0, n12 = 0, n21 = 0, n22 = 0;
+    };
     int stride = 0;  // cells per padded row
-    std::vector<float> filled, mx, my, ixx, ixy, iyy, ex, ey;
+    std::vector<float> filled, mx, my, ex, ey;
     std::vector<float> a11, a12, a21, a22, lo_x, hi_x, lo_y, hi_y;
-    std::vector<float> n11, n12, n21, n22;  // the last call's fit, at its progress
+    std::vector<State> state;
     void resize(std::size_t cells);
     std::size_t index(int cx, int cy) const {
       return static_cast<std::size_t>(cy) * static_cast<std::size_t>(stride) +
