@@ -52,8 +52,6 @@ class CellGrid {
     }
   }
 
-  // Row-major id (cy * nx + cx) of the cell of rank r.
-  int cell_of_rank(int r) const { return cell_of_rank_[r]; }
   // Lower-left corner of the cell of rank r, and the cell size.
   double cell_x0(int r) const { return xmin_ + (cell_of_rank_[r] % nx_) * cell_; }
   double cell_y0(int r) const { return ymin_ + (cell_of_rank_[r] / nx_) * cell_; }

@@ -69,36 +69,28 @@ double DisplacementMonitor::row_closing(int cy, int nx, int ox, int oy, double c
   // Cell a = first + k of the row, b = a + shift.
   const std::size_t first = f.index(0, cy);
   const std::size_t shifted = f.index(ox, cy + oy);
-  const float *A11 = f.a11.data() + first, *A12 = f.a12.data() + first;
-  const float *A21 = f.a21.data() + first, *A22 = f.a22.data() + first;
-  const float *LX = f.lo_x.data() + first, *HX = f.hi_x.data() + first;
-  const float *LY = f.lo_y.data() + first, *HY = f.hi_y.data() + first;
-  const float *EX = f.ex.data() + first, *EY = f.ey.data() + first;
-  const float *FA = f.filled.data() + first, *FB = f.filled.data() + shifted;
-  const float *MX = f.mx.data() + first, *MY = f.my.data() + first;
-  const float *BMX = f.mx.data() + shifted, *BMY = f.my.data() + shifted;
-  const float *B11 = f.a11.data() + shifted, *B12 = f.a12.data() + shifted;
-  const float *B21 = f.a21.data() + shifted, *B22 = f.a22.data() + shifted;
-  const float *BLX = f.lo_x.data() + shifted, *BHX = f.hi_x.data() + shifted;
-  const float *BLY = f.lo_y.data() + shifted, *BHY = f.hi_y.data() + shifted;
-  const float *BEX = f.ex.data() + shifted, *BEY = f.ey.data() + shifted;
+  const CellFits::Row a = f.row(first), b = f.row(shifted);
   // b right of a (ox > 0): r0_x <= -gap_x, and d_i,x - d_j,x <= hi_a - lo_b closes it; b left
   // of a: hi_b - lo_a. As s * (hi_a - lo_b) + (1 - s) * (hi_b - lo_a) without a branch.
   const float right = ox > 0 ? 1.0f : 0.0f;
 #pragma omp simd
   for (int k = 0; k < nx; ++k) {
-    const float a11 = 0.5f * (A11[k] + B11[k]), a12 = 0.5f * (A12[k] + B12[k]);
-    const float a21 = 0.5f * (A21[k] + B21[k]), a22 = 0.5f * (A22[k] + B22[k]);
-    const float d11 = 0.5f * std::fabs(A11[k] - B11[k]), d12 = 0.5f * std::fabs(A12[k] - B12[k]);
-    const float d21 = 0.5f * std::fabs(A21[k] - B21[k]), d22 = 0.5f * std::fabs(A22[k] - B22[k]);
-    const float ex = EX[k] + BEX[k], ey = EY[k] + BEY[k];
+    const float a11 = 0.5f * (a.a11[k] + b.a11[k]), a12 = 0.5f * (a.a12[k] + b.a12[k]);
+    const float a21 = 0.5f * (a.a21[k] + b.a21[k]), a22 = 0.5f * (a.a22[k] + b.a22[k]);
+    const float d11 = 0.5f * std::fabs(a.a11[k] - b.a11[k]),
+                d12 = 0.5f * std::fabs(a.a12[k] - b.a12[k]);
+    const float d21 = 0.5f * std::fabs(a.a21[k] - b.a21[k]),
+                d22 = 0.5f * std::fabs(a.a22[k] - b.a22[k]);
+    const float ex = a.ex[k] + b.ex[k], ey = a.ey[k] + b.ey[k];
     // c_b - c_a: the cells' offset and their mean build positions.
-    const float cbx = ocx + (BMX[k] - MX[k]), cby = ocy + (BMY[k] - MY[k]);
+    const float cbx = ocx + (b.mx[k] - a.mx[k]), cby = ocy + (b.my[k] - a.my[k]);
     const float kx = a11 * cbx + a12 * cby, ky = a21 * cbx + a22 * cby;
     const float wx =
-        vmax(std::fabs(kx + LX[k] - BHX[k]), std::fabs(kx + HX[k] - BLX[k])) + d11 * ex + d12 * ey;
+        vmax(std::fabs(kx + a.lo_x[k] - b.hi_x[k]), std::fabs(kx + a.hi_x[k] - b.lo_x[k])) +
+        d11 * ex + d12 * ey;
     const float wy =
-        vmax(std::fabs(ky + LY[k] - BHY[k]), std::fabs(ky + HY[k] - BLY[k])) + d21 * ex + d22 * ey;
+        vmax(std::fabs(ky + a.lo_y[k] - b.hi_y[k]), std::fabs(ky + a.hi_y[k] - b.lo_y[k])) +
+        d21 * ex + d22 * ey;
     // Smallest singular value of M = I + A, [[p, q], [r, s]]:
     // (sqrt((p + s)^2 + (q - r)^2) - sqrt((p - s)^2 + (q + r)^2)) / 2, without cancellation
     // near A = 0. For a shear A = [[0, t], [0, 0]] it is ~ 1 - t / 2: a pair at 45 degrees
@@ -108,18 +100,19 @@ double DisplacementMonitor::row_closing(int cy, int nx, int ox, int oy, double c
         vmax(0.0f, 0.5f * (std::sqrt(ps * ps + qr * qr) - std::sqrt(pms * pms + qpr * qpr)));
     const float w = std::sqrt(wx * wx + wy * wy);
     float closing = w + r - sigma * g;
-    float size = r + g + std::fabs(kx) + std::fabs(ky) + std::fabs(LX[k]) + std::fabs(HX[k]) +
-                 std::fabs(LY[k]) + std::fabs(HY[k]) + std::fabs(BLX[k]) + std::fabs(BHX[k]) +
-                 std::fabs(BLY[k]) + std::fabs(BHY[k]) + (d11 + d12 + d21 + d22) * (ex + ey);
+    float size = r + g + std::fabs(kx) + std::fabs(ky) + std::fabs(a.lo_x[k]) +
+                 std::fabs(a.hi_x[k]) + std::fabs(a.lo_y[k]) + std::fabs(a.hi_y[k]) +
+                 std::fabs(b.lo_x[k]) + std::fabs(b.hi_x[k]) + std::fabs(b.lo_y[k]) +
+                 std::fabs(b.hi_y[k]) + (d11 + d12 + d21 + d22) * (ex + ey);
     if constexpr (Gap) {
       // The displacement boxes d = f + A_cell X, with |X| <= e per component.
-      const float sxa = std::fabs(A11[k]) * EX[k] + std::fabs(A12[k]) * EY[k];
-      const float sya = std::fabs(A21[k]) * EX[k] + std::fabs(A22[k]) * EY[k];
-      const float sxb = std::fabs(B11[k]) * BEX[k] + std::fabs(B12[k]) * BEY[k];
-      const float syb = std::fabs(B21[k]) * BEX[k] + std::fabs(B22[k]) * BEY[k];
-      const float close_x = right * ((HX[k] + sxa) - (BLX[k] - sxb)) +
-                            (1.0f - right) * ((BHX[k] + sxb) - (LX[k] - sxa));
-      const float close_y = (HY[k] + sya) - (BLY[k] - syb);  // b above a (oy >= 0)
+      const float sxa = std::fabs(a.a11[k]) * a.ex[k] + std::fabs(a.a12[k]) * a.ey[k];
+      const float sya = std::fabs(a.a21[k]) * a.ex[k] + std::fabs(a.a22[k]) * a.ey[k];
+      const float sxb = std::fabs(b.a11[k]) * b.ex[k] + std::fabs(b.a12[k]) * b.ey[k];
+      const float syb = std::fabs(b.a21[k]) * b.ex[k] + std::fabs(b.a22[k]) * b.ey[k];
+      const float close_x = right * ((a.hi_x[k] + sxa) - (b.lo_x[k] - sxb)) +
+                            (1.0f - right) * ((b.hi_x[k] + sxb) - (a.lo_x[k] - sxa));
+      const float close_y = (a.hi_y[k] + sya) - (b.lo_y[k] - syb);  // b above a (oy >= 0)
       // A zero gap adds nothing: max(0 - close, 0) * 0.
       const float sep_x = vmax(gap_x - close_x, 0.0f) * (gap_x > 0.0f ? 1.0f : 0.0f);
       const float sep_y = vmax(gap_y - close_y, 0.0f) * (gap_y > 0.0f ? 1.0f : 0.0f);
@@ -127,7 +120,7 @@ double DisplacementMonitor::row_closing(int cy, int nx, int ox, int oy, double c
       size += gap_x + gap_y + sxa + sya + sxb + syb;
     }
     closing += kFloatSlack * size;
-    out[k] = closing * FA[k] * FB[k];  // 0 unless both cells hold particles
+    out[k] = closing * a.filled[k] * b.filled[k];  // 0 unless both cells hold particles
   }
   float worst = 0.0f;
   for (int k = 0; k < nx; ++k) worst = vmax(worst, out[k]);

@@ -77,6 +77,16 @@ class DisplacementMonitor {
     std::vector<float> filled, mx, my, ex, ey;
     std::vector<float> a11, a12, a21, a22, lo_x, hi_x, lo_y, hi_y;
     std::vector<State> state;
+    // The arrays from cell `at` on, for the pair loop (cell at + k is row[k]).
+    struct Row {
+      const float *filled, *mx, *my, *ex, *ey, *a11, *a12, *a21, *a22, *lo_x, *hi_x, *lo_y, *hi_y;
+    };
+    Row row(std::size_t at) const {
+      return {filled.data() + at, mx.data() + at,   my.data() + at,   ex.data() + at,
+              ey.data() + at,     a11.data() + at,  a12.data() + at,  a21.data() + at,
+              a22.data() + at,    lo_x.data() + at, hi_x.data() + at, lo_y.data() + at,
+              hi_y.data() + at};
+    }
     void resize(std::size_t cells);
     std::size_t index(int cx, int cy) const {
       return static_cast<std::size_t>(cy) * static_cast<std::size_t>(stride) +
